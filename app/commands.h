@@ -1,0 +1,33 @@
+// The subcommands of `rtdr`. Each add_*_command declares its options on a new subcommand of `app`
+// and returns the function that runs it once the whole command line has been parsed.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct Command {
+  CLI::App* app;
+  std::function<void()> run;
+};
+
+Command add_render_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
+
+// Shared option parsing, with one-line rtdr::Error messages naming the flag.
+struct Size {
+  int width;
+  int height;
+};
+Size parse_size(const std::string& text);  // "WxH", each in [1, 16384]
+struct FrameRange {
+  int first;
+  int last;  // inclusive
+};
+FrameRange parse_frames(const std::string& text);  // "A-B" or "A", 0 <= A <= B
+
+}  // namespace rtdr

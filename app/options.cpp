@@ -1,0 +1,43 @@
+// Parsing of the option values shared by several subcommands.
+#include "app/commands.h"
+#include "core/error.h"
+
+#include <charconv>
+
+namespace rtdr {
+namespace {
+
+// Parses a whole decimal integer; false on anything else (empty, sign, trailing text, overflow).
+bool parse_int(std::string_view s, int& out) {
+  if (s.empty()) return false;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+}  // namespace
+
+Size parse_size(const std::string& text) {
+  const size_t x = text.find('x');
+  Size s{};
+  if (x == std::string::npos || !parse_int(std::string_view(text).substr(0, x), s.width) ||
+      !parse_int(std::string_view(text).substr(x + 1), s.height))
+    throw Error("--size '" + text + "' is not WIDTHxHEIGHT, e.g. 1280x720");
+  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
+    throw Error("--size '" + text + "': width and height must be between 1 and 16384");
+  return s;
+}
+
+FrameRange parse_frames(const std::string& text) {
+  const size_t dash = text.find('-');
+  FrameRange r{};
+  const bool ok = dash == std::string::npos
+                      ? parse_int(text, r.first) && (r.last = r.first, true)
+                      : parse_int(std::string_view(text).substr(0, dash), r.first) &&
+                            parse_int(std::string_view(text).substr(dash + 1), r.last);
+  if (!ok) throw Error("--frames '" + text + "' is not A-B or A, e.g. 0-9");
+  if (r.first < 0 || r.last < r.first)
+    throw Error("--frames '" + text + "': need 0 <= A <= B");
+  return r;
+}
+
+}  // namespace rtdr

@@ -1,0 +1,80 @@
+// The preview mosaic: 3 x 2 tiles of width x height,
+//   albedo (sRGB)        | shading normal (n/2 + 1/2) | depth (near bright, far dark)
+//   motion (see below)   | instance id (hashed hue)   | emission (clamped, sRGB)
+// Motion is shown as R = 1/2 + m.x / s, G = 1/2 + m.y / s, B = 1/2, with s = 2 * max |m| in the frame
+// (at least 1 px), so a still pixel is grey.
+#include "app/preview.h"
+
+#include "core/color.h"
+#include "core/png_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace rtdr {
+namespace {
+
+using PixelColor = std::function<glm::vec3(size_t)>;  // pixel index -> display colour in [0, 1], sRGB
+
+// A fixed, well-spread colour for an id (golden-ratio hue walk); black for "no surface".
+glm::vec3 id_color(uint32_t id) {
+  if (id == kInvalidId) return glm::vec3(0.0f);
+  const float h = std::fmod(0.61803398875f * float(id) + 0.1f, 1.0f) * 6.0f;
+  const float f = h - std::floor(h);
+  switch (int(h)) {
+    case 0: return {1.0f, f, 0.2f};
+    case 1: return {1.0f - f, 1.0f, 0.2f};
+    case 2: return {0.2f, 1.0f, f};
+    case 3: return {0.2f, 1.0f - f, 1.0f};
+    case 4: return {f, 0.2f, 1.0f};
+    default: return {1.0f, 0.2f, 1.0f - f};
+  }
+}
+
+glm::vec3 srgb(glm::vec3 linear) {
+  return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)};
+}
+
+}  // namespace
+
+void write_preview_png(const std::string& path, const Frame& frame) {
+  const int w = frame.width(), h = frame.height();
+  const auto albedo = frame.get_rgb("albedo");
+  const auto normal = frame.get_vec3("normal");
+  const auto emission = frame.get_rgb("emission");
+  const auto motion = frame.get_vec2("motion");
+  const FloatPlane& depth = frame.float_channel("depth.Z");
+  const UIntPlane& instance = frame.uint_channel("id.instance");
+
+  float max_depth = 0.0f, max_motion = 0.5f;
+  for (size_t i = 0; i < depth.data.size(); ++i) {
+    max_depth = std::max(max_depth, depth.data[i]);
+    max_motion = std::max({max_motion, std::abs(motion[i].x), std::abs(motion[i].y)});
+  }
+  const float motion_scale = 2.0f * max_motion;
+
+  const PixelColor tiles[2][3] = {
+      {[&](size_t i) { return srgb(albedo[i]); },
+       [&](size_t i) { return instance.data[i] == kInvalidId ? glm::vec3(0.0f) : normal[i] * 0.5f + 0.5f; },
+       [&](size_t i) { return glm::vec3(depth.data[i] > 0.0f ? 1.0f - 0.9f * depth.data[i] / max_depth : 0.0f); }},
+      {[&](size_t i) { return glm::vec3(0.5f + motion[i] / motion_scale, 0.5f); },
+       [&](size_t i) { return id_color(instance.data[i]); },
+       [&](size_t i) { return srgb(glm::min(emission[i], glm::vec3(1.0f))); }},
+  };
+
+  const int mosaic_w = 3 * w, mosaic_h = 2 * h;
+  std::vector<uint8_t> rgb(size_t(mosaic_w) * size_t(mosaic_h) * 3);
+  for (int ty = 0; ty < 2; ++ty)
+    for (int tx = 0; tx < 3; ++tx)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const glm::vec3 c = tiles[ty][tx](size_t(y) * size_t(w) + size_t(x));
+          uint8_t* out = &rgb[(size_t(ty * h + y) * size_t(mosaic_w) + size_t(tx * w + x)) * 3];
+          for (int k = 0; k < 3; ++k) out[k] = to_byte(c[k]);
+        }
+  write_png(path, mosaic_w, mosaic_h, rgb);
+}
+
+}  // namespace rtdr

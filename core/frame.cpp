@@ -1,0 +1,87 @@
+#include "core/frame.h"
+
+#include "core/error.h"
+
+namespace rtdr {
+namespace {
+
+const char* const kXYZ[3] = {"X", "Y", "Z"};
+const char* const kRGB[3] = {"R", "G", "B"};
+
+std::string where(const Frame& f) { return f.source.empty() ? std::string("frame") : f.source; }
+
+}  // namespace
+
+FloatPlane& Frame::add_float(const std::string& name, float fill) {
+  uints_.erase(name);
+  return floats_[name] = FloatPlane(width_, height_, fill);
+}
+
+UIntPlane& Frame::add_uint(const std::string& name, uint32_t fill) {
+  floats_.erase(name);
+  return uints_[name] = UIntPlane(width_, height_, fill);
+}
+
+bool Frame::has(const std::string& name) const { return floats_.count(name) || uints_.count(name); }
+
+const FloatPlane& Frame::float_channel(const std::string& name) const {
+  auto it = floats_.find(name);
+  if (it == floats_.end())
+    throw Error(where(*this) + " has no float channel '" + name + "' (see docs/buffers.md)");
+  return it->second;
+}
+
+const UIntPlane& Frame::uint_channel(const std::string& name) const {
+  auto it = uints_.find(name);
+  if (it == uints_.end())
+    throw Error(where(*this) + " has no uint channel '" + name + "' (see docs/buffers.md)");
+  return it->second;
+}
+
+FloatPlane& Frame::float_channel(const std::string& name) {
+  return const_cast<FloatPlane&>(std::as_const(*this).float_channel(name));
+}
+
+UIntPlane& Frame::uint_channel(const std::string& name) {
+  return const_cast<UIntPlane&>(std::as_const(*this).uint_channel(name));
+}
+
+void Frame::set_vec2(const std::string& layer, const std::vector<glm::vec2>& values) {
+  FloatPlane& x = add_float(layer + ".X");
+  FloatPlane& y = add_float(layer + ".Y");
+  for (size_t i = 0; i < values.size(); ++i) {
+    x.data[i] = values[i].x;
+    y.data[i] = values[i].y;
+  }
+}
+
+std::vector<glm::vec2> Frame::get_vec2(const std::string& layer) const {
+  const FloatPlane& x = float_channel(layer + ".X");
+  const FloatPlane& y = float_channel(layer + ".Y");
+  std::vector<glm::vec2> out(x.data.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = {x.data[i], y.data[i]};
+  return out;
+}
+
+void Frame::set_group3(const std::string& layer, const char* const suffixes[3], const std::vector<glm::vec3>& v) {
+  for (int c = 0; c < 3; ++c) {
+    FloatPlane& p = add_float(layer + "." + suffixes[c]);
+    for (size_t i = 0; i < v.size(); ++i) p.data[i] = v[i][c];
+  }
+}
+
+std::vector<glm::vec3> Frame::get_group3(const std::string& layer, const char* const suffixes[3]) const {
+  std::vector<glm::vec3> out(size_t(width_) * size_t(height_));
+  for (int c = 0; c < 3; ++c) {
+    const FloatPlane& p = float_channel(layer + "." + suffixes[c]);
+    for (size_t i = 0; i < out.size(); ++i) out[i][c] = p.data[i];
+  }
+  return out;
+}
+
+void Frame::set_vec3(const std::string& layer, const std::vector<glm::vec3>& v) { set_group3(layer, kXYZ, v); }
+void Frame::set_rgb(const std::string& layer, const std::vector<glm::vec3>& v) { set_group3(layer, kRGB, v); }
+std::vector<glm::vec3> Frame::get_vec3(const std::string& layer) const { return get_group3(layer, kXYZ); }
+std::vector<glm::vec3> Frame::get_rgb(const std::string& layer) const { return get_group3(layer, kRGB); }
+
+}  // namespace rtdr

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages RTDR needs (only the missing ones), then configures and builds build/.
+# Idempotent: when everything is installed and built it only runs an up-to-date check of the build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Every dependency is a Debian package; ../shared/TOOLCHAIN.md has the CMake names and gotchas.
+PACKAGES=(
+  cmake g++ pkg-config ninja-build
+  libglm-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev catch2 libtbb-dev
+  libcli11-dev nlohmann-json3-dev zlib1g-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}"
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+[ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build

@@ -4,14 +4,16 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 
 namespace rtdr {
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string& tmp_path)>& write) {
-  // The pid keeps two processes writing the same destination from sharing a temporary.
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  // The pid and a per-process counter keep concurrent writers of one destination apart.
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   std::error_code ec;
   try {
     write(tmp);
@@ -21,8 +23,9 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   }
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
+    const std::string reason = ec.message();  // before remove() overwrites ec
     std::filesystem::remove(tmp, ec);
-    throw Error("cannot write '" + path + "': " + ec.message());
+    throw Error("cannot write '" + path + "': " + reason);
   }
 }
 

@@ -17,7 +17,7 @@ Frame render_gbuffer_frame(const Scene& scene, int frame_index, int width, int h
   Frame frame(width, height);
   write_gbuffer(resolve_gbuffer(scene, pose, view, vis), frame);
   // Motion vectors m(x_i) = x_{i-1} - x_i in pixels [TRMV21 Eq. 1].
-  frame.set_vec2("motion", backproject_motion(scene, prev_pose, prev_view, vis));
+  write_motion(backproject_motion(scene, prev_pose, prev_view, vis), frame);
   return frame;
 }
 

@@ -33,10 +33,6 @@ glm::vec3 id_color(uint32_t id) {
   }
 }
 
-glm::vec3 srgb(glm::vec3 linear) {
-  return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)};
-}
-
 }  // namespace
 
 void write_preview_png(const std::string& path, const Frame& frame) {
@@ -56,12 +52,12 @@ void write_preview_png(const std::string& path, const Frame& frame) {
   const float motion_scale = 2.0f * max_motion;
 
   const PixelColor tiles[2][3] = {
-      {[&](size_t i) { return srgb(albedo[i]); },
+      {[&](size_t i) { return srgb_encode(albedo[i]); },
        [&](size_t i) { return instance.data[i] == kInvalidId ? glm::vec3(0.0f) : normal[i] * 0.5f + 0.5f; },
        [&](size_t i) { return glm::vec3(depth.data[i] > 0.0f ? 1.0f - 0.9f * depth.data[i] / max_depth : 0.0f); }},
       {[&](size_t i) { return glm::vec3(0.5f + motion[i] / motion_scale, 0.5f); },
        [&](size_t i) { return id_color(instance.data[i]); },
-       [&](size_t i) { return srgb(glm::min(emission[i], glm::vec3(1.0f))); }},
+       [&](size_t i) { return srgb_encode(glm::min(emission[i], glm::vec3(1.0f))); }},
   };
 
   const int mosaic_w = 3 * w, mosaic_h = 2 * h;

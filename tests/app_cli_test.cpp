@@ -1,0 +1,138 @@
+// The `rtdr` command as a user meets it: bad input gives one line on stderr, a non-zero exit and no
+// files; a good run writes exactly the layers docs/buffers.md lists. Runs the real binary (RTDR_EXE).
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string err;
+};
+
+// A fresh, empty scratch folder per test case.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("rtdr_cli_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+RunResult run_rtdr(const std::string& args, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string cmd = std::string(RTDR_EXE) + " " + args + " >/dev/null 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(err)};
+}
+
+size_t count_files(const fs::path& dir) {
+  if (!fs::exists(dir)) return 0;
+  return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+// The channel names in the table of docs/buffers.md: `a.X/Y/Z` expands to a.X, a.Y, a.Z.
+std::set<std::string> documented_channels() {
+  std::set<std::string> names;
+  std::istringstream doc(read_file(fs::path(RTDR_SOURCE_DIR) / "docs/buffers.md"));
+  const std::regex cell("^\\| `([a-z]+)\\.([A-Za-z/]+)`(, `([a-z]+)\\.([A-Za-z]+)`)? \\|");
+  for (std::string line; std::getline(doc, line);) {
+    std::smatch m;
+    if (!std::regex_search(line, m, cell)) continue;
+    std::stringstream suffixes(m[2].str());
+    for (std::string s; std::getline(suffixes, s, '/');) names.insert(m[1].str() + "." + s);
+    if (m[3].matched) names.insert(m[4].str() + "." + m[5].str());
+  }
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("bad input gives one error line, a non-zero exit and no output") {
+  const fs::path dir = scratch("bad");
+  const fs::path malformed = dir / "malformed.gltf";
+  std::ofstream(malformed) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ {";
+  const fs::path truncated = dir / "truncated.gltf";
+  const std::string cornell = read_file(fs::path(RTDR_SOURCE_DIR) / "scenes/cornell.gltf");
+  std::ofstream(truncated) << cornell.substr(0, cornell.size() / 2);
+  const fs::path not_a_dir = dir / "file.txt";
+  std::ofstream(not_a_dir) << "x";
+
+  const std::string out = (dir / "out").string();
+  const std::vector<std::string> bad_args = {
+      "render --scene no_such_scene --frames 0 --size 8x8 --out " + out,
+      "render --scene /no/such/file.gltf --frames 0 --size 8x8 --out " + out,
+      "render --scene " + malformed.string() + " --frames 0 --size 8x8 --out " + out,
+      "render --scene " + truncated.string() + " --frames 0 --size 8x8 --out " + out,
+      "render --scene cornell --frames 0 --size 0x8 --out " + out,
+      "render --scene cornell --frames 0 --size 8x --out " + out,
+      "render --scene cornell --frames 0 --size -8x8 --out " + out,
+      "render --scene cornell --frames 0 --size 99999x8 --out " + out,
+      "render --scene cornell --frames 5-2 --size 8x8 --out " + out,
+      "render --scene cornell --frames a-b --size 8x8 --out " + out,
+      "render --scene cornell --frames 0 --size 8x8 --out " + not_a_dir.string(),
+      "render --no-such-flag",
+      "bench --stage nothing --runs 1",
+      "",
+  };
+  for (const std::string& args : bad_args) {
+    INFO("rtdr " << args);
+    const RunResult r = run_rtdr(args, dir);
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.rfind("rtdr: error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(count_files(dir / "out") == 0);
+  }
+}
+
+TEST_CASE("a render at an odd size writes every documented layer and no temporary files") {
+  const fs::path dir = scratch("good");
+  const RunResult r = run_rtdr("render --scene cornell --frames 0-1 --size 33x17 --out " + (dir / "out").string(), dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.empty());
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(dir / "out")) files.insert(e.path().filename().string());
+  CHECK(files == std::set<std::string>{"frame_0000.exr", "frame_0000.png", "frame_0001.exr", "frame_0001.png"});
+
+  const rtdr::Frame frame = rtdr::read_exr((dir / "out/frame_0001.exr").string());
+  CHECK(frame.width() == 33);
+  CHECK(frame.height() == 17);
+  std::set<std::string> written;
+  for (const auto& [name, plane] : frame.float_channels()) written.insert(name);
+  for (const auto& [name, plane] : frame.uint_channels()) written.insert(name);
+  const std::set<std::string> documented = documented_channels();
+  CHECK(documented.size() >= 25);
+  CHECK(written == documented);
+}
+
+TEST_CASE("option parsers accept what they document and reject the rest") {
+  CHECK(rtdr::parse_size("1280x720").width == 1280);
+  CHECK(rtdr::parse_size("641x481").height == 481);
+  for (const char* bad : {"", "x", "12x", "x12", "0x5", "5x0", "12X7", "1.5x2", "16385x2", " 3x3", "3x3 "})
+    CHECK_THROWS_AS(rtdr::parse_size(bad), rtdr::Error);
+  CHECK(rtdr::parse_frames("7").first == 7);
+  CHECK(rtdr::parse_frames("7").last == 7);
+  CHECK(rtdr::parse_frames("2-9").last == 9);
+  for (const char* bad : {"", "-", "3-", "-3", "9-2", "a", "1-2-3"})
+    CHECK_THROWS_AS(rtdr::parse_frames(bad), rtdr::Error);
+}

@@ -2,6 +2,8 @@
 // Inputs, outputs and layer names in raster/gbuffer.h; conventions in raster/README.md.
 #include "raster/gbuffer.h"
 
+#include "raster/surface.h"
+
 #include "core/error.h"
 #include "core/parallel.h"
 
@@ -11,90 +13,31 @@
 namespace rtdr {
 namespace {
 
-// What every pixel of one mesh shares at time t: the material's constants, looked up once per resolve.
-struct MeshShading {
-  glm::vec3 base_color;
-  const Texture* texture;  // nullptr when untextured or the mesh has no uvs
-  float roughness;
-  float metallic;
-  glm::vec3 emission;      // emissive * emissive_strength(t)
-  uint32_t material;       // kInvalidId for glTF's default material
-};
-
-std::vector<MeshShading> mesh_shading(const Scene& scene, double t) {
-  std::vector<MeshShading> out;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    const Material& mat = scene.material_of_mesh(int(m));
-    const bool textured = mat.base_color_texture >= 0 && !mesh.uvs.empty();
-    out.push_back({glm::vec3(mat.base_color), textured ? &scene.textures[size_t(mat.base_color_texture)] : nullptr,
-                   mat.roughness, mat.metallic, mat.emissive * scene.emissive_strength(mat, t),
-                   mesh.material >= 0 ? uint32_t(mesh.material) : kInvalidId});
-  }
-  return out;
-}
-
-// Normalises v, or `fallback` when v has no direction (a degenerate triangle or normal).
-glm::vec3 normalize_or(const glm::vec3& v, const glm::vec3& fallback) {
-  const float len2 = glm::dot(v, v);
-  return len2 > 0.0f ? v / std::sqrt(len2) : glm::normalize(fallback);
-}
-
 // What the resolve of every pixel reads.
 struct ResolveInputs {
-  const Scene& scene;
-  const ScenePose& pose;
   const View& view;
-  std::vector<MeshShading> shading;  // per mesh
-  glm::mat3 n_world_to_view;         // world-space normals to view space
+  SurfaceTable surfaces;      // materials at the pose's time
+  glm::mat3 n_world_to_view;  // world-space normals to view space
 };
 
 // The resolve of one covered pixel i, centre `centre`, whose visibility sample is s at depth `depth`.
 void resolve_pixel(const ResolveInputs& in, const SurfaceSample& s, glm::vec2 centre, float depth, size_t i,
                    GBuffer& g) {
-  const Scene& scene = in.scene;
-  const uint32_t mesh_id = uint32_t(scene.instances[s.instance].mesh);
-  const Mesh& mesh = scene.meshes[mesh_id];
-  const glm::uvec3& tri = mesh.triangles[s.triangle];
-  const float b1 = s.bary.x, b2 = s.bary.y, b0 = 1.0f - b1 - b2;  // Embree's (u, v) convention
-  const glm::mat3& normal_to_world = in.pose.normal_to_world[s.instance];
-
-  // Position: the barycentric combination of the vertices, moved to world space.
-  const glm::vec3 position = world_point(scene, in.pose, s);
-  // Geometric normal: the face normal, turned towards the eye (both faces are drawn).
-  const glm::vec3 p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
-  const glm::vec3 to_eye = in.view.eye - position;
-  glm::vec3 geo = normalize_or(normal_to_world * glm::cross(p1 - p0, p2 - p0), to_eye);
-  if (glm::dot(geo, to_eye) < 0.0f) geo = -geo;
-  // Shading normal: interpolated vertex normals (or the face normal), put in the geometric normal's hemisphere.
-  glm::vec3 normal = geo;
-  if (!mesh.normals.empty()) {
-    const glm::vec3 n = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
-    normal = normalize_or(normal_to_world * n, geo);
-    if (glm::dot(normal, geo) < 0.0f) normal = -normal;
-  }
-  // Material: albedo is base colour times texture, the factor SVGF demodulates by.
-  const MeshShading& m = in.shading[mesh_id];
-  glm::vec3 albedo = m.base_color;
-  if (m.texture) {
-    const glm::vec2 uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
-    albedo *= glm::vec3(m.texture->sample(uv));
-  }
-
+  const SurfacePoint p = in.surfaces.at(s, in.view.eye);
   g.instance[i] = s.instance;
   g.triangle[i] = s.triangle;
   g.bary[i] = s.bary;
-  g.position[i] = position;
-  g.normal[i] = normal;
-  g.geo_normal[i] = geo;
+  g.position[i] = p.position;
+  g.normal[i] = p.normal;
+  g.geo_normal[i] = p.geo_normal;
   g.depth[i] = depth;
-  g.depth_grad[i] = depth_gradient(in.view, centre, depth, in.n_world_to_view * geo);
-  g.albedo[i] = albedo;
-  g.roughness[i] = m.roughness;
-  g.metallic[i] = m.metallic;
-  g.emission[i] = m.emission;
-  g.mesh[i] = mesh_id;
-  g.material[i] = m.material;
+  g.depth_grad[i] = depth_gradient(in.view, centre, depth, in.n_world_to_view * p.geo_normal);
+  g.albedo[i] = p.albedo;
+  g.roughness[i] = p.roughness;
+  g.metallic[i] = p.metallic;
+  g.emission[i] = p.emission;
+  g.mesh[i] = p.mesh;
+  g.material[i] = p.material;
 }
 
 // A background pixel: every id kInvalidId, every float 0.
@@ -168,7 +111,7 @@ void resolve_gbuffer_into(const Scene& scene, const ScenePose& pose, const View&
   if (g.width != vis.width || g.height != vis.height) g = GBuffer(vis.width, vis.height);
   // Normals go from world to view space by the inverse transpose of world_to_view's 3x3, which is the
   // transpose of view_to_world's 3x3.
-  const ResolveInputs in{scene, pose, view, mesh_shading(scene, pose.t), glm::transpose(glm::mat3(view.view_to_world))};
+  const ResolveInputs in{view, SurfaceTable(scene, pose), glm::transpose(glm::mat3(view.view_to_world))};
   parallel_rows(vis.height, [&](int y) {
     for (int x = 0; x < vis.width; ++x) {
       const size_t i = vis.index(x, y);

@@ -1,0 +1,87 @@
+// The area lights of one frame and their power-proportional choice. See lights.h.
+#include "trace/lights.h"
+
+#include "core/color.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rtdr {
+
+LightSet::LightSet(const Scene& scene, const ScenePose& pose) {
+  first_light_of_instance_.assign(scene.instances.size(), -1);
+  instance_triangle_count_.assign(scene.instances.size(), 0);
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Mesh& mesh = scene.meshes[size_t(scene.instances[i].mesh)];
+    const Material& material = scene.material_of_mesh(scene.instances[i].mesh);
+    const glm::vec3 radiance = material.emissive * scene.emissive_strength(material, pose.t);
+    if (luminance(radiance) <= 0.0f) continue;  // not a light (or switched off at this time)
+    first_light_of_instance_[i] = int(lights_.size());
+    instance_triangle_count_[i] = int(mesh.triangles.size());
+    const glm::mat4& to_world = pose.instance_to_world[i];
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      EmissiveTriangle e;
+      e.p0 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][0]], 1.0f));
+      e.p1 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][1]], 1.0f));
+      e.p2 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][2]], 1.0f));
+      const glm::vec3 cross = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
+      e.area = 0.5f * glm::length(cross);
+      e.normal = e.area > 0.0f ? cross / (2.0f * e.area) : glm::vec3(0.0f, 1.0f, 0.0f);
+      e.radiance = radiance;
+      e.instance = uint32_t(i);
+      e.triangle = uint32_t(t);
+      lights_.push_back(e);
+    }
+  }
+  // Power of a one-sided Lambertian emitter: Phi = pi * A * L (luminance, so the choice follows brightness).
+  std::vector<double> power(lights_.size());
+  double total = 0.0;
+  for (size_t l = 0; l < lights_.size(); ++l)
+    total += power[l] = std::numbers::pi * double(lights_[l].area) * double(luminance(lights_[l].radiance));
+  cdf_.resize(lights_.size());
+  pmf_.resize(lights_.size());
+  double running = 0.0;
+  for (size_t l = 0; l < lights_.size(); ++l) {
+    pmf_[l] = total > 0.0 ? float(power[l] / total) : 0.0f;
+    running += power[l];
+    cdf_[l] = total > 0.0 ? float(running / total) : 0.0f;
+  }
+  if (!cdf_.empty()) cdf_.back() = 1.0f;  // guard the last bin against rounding
+  if (total <= 0.0) *this = LightSet();   // emissive materials whose triangles all have zero area
+}
+
+LightSample LightSet::sample(float u_select, glm::vec2 u_point) const {
+  // The first light whose cumulative power exceeds u_select; zero-power lights (empty bins) are skipped.
+  const int l = std::min(int(std::upper_bound(cdf_.begin(), cdf_.end(), u_select) - cdf_.begin()), int(cdf_.size()) - 1);
+  const EmissiveTriangle& e = lights_[size_t(l)];
+  // Uniform point on the triangle: b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1) (Shirley and Chiu 1997).
+  const float s = std::sqrt(u_point.x);
+  const float b0 = 1.0f - s, b1 = u_point.y * s;
+  LightSample ls;
+  ls.position = b0 * e.p0 + b1 * e.p1 + (1.0f - b0 - b1) * e.p2;
+  ls.normal = e.normal;
+  ls.radiance = e.radiance;
+  ls.pdf_area = area_pdf(size_t(l));
+  ls.light = l;
+  return ls;
+}
+
+float LightSet::area_pdf(size_t light) const {
+  // A zero-area triangle has zero power and is never chosen: density 0, not 0/0.
+  return lights_[light].area > 0.0f ? pmf_[light] / lights_[light].area : 0.0f;
+}
+
+int LightSet::find(uint32_t instance, uint32_t triangle) const {
+  if (instance >= first_light_of_instance_.size()) return -1;
+  const int first = first_light_of_instance_[instance];
+  if (first < 0 || triangle >= uint32_t(instance_triangle_count_[instance])) return -1;
+  return first + int(triangle);
+}
+
+float LightSet::pdf_area(uint32_t instance, uint32_t triangle) const {
+  const int l = find(instance, triangle);
+  return l < 0 ? 0.0f : area_pdf(size_t(l));
+}
+
+}  // namespace rtdr

@@ -1,0 +1,61 @@
+// The area lights of one frame: every triangle whose material emits, in world space at the pose's time,
+// with a table for choosing one in proportion to its power [SVGF17 Sec. 3: next-event estimation].
+//
+// Emitters are one-sided Lambertian: a triangle emits radiance Le = emissive * strength(t) from its front
+// face (counter-clockwise winding, glTF's front) into the hemisphere around its geometric normal. Its
+// power is Phi = pi * A * luminance(Le).
+#pragma once
+
+#include "scenes/scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace rtdr {
+
+struct EmissiveTriangle {
+  glm::vec3 p0, p1, p2;  // world space
+  glm::vec3 normal;      // unit front-face normal, (p1 - p0) x (p2 - p0) normalised
+  float area;
+  glm::vec3 radiance;    // Le
+  uint32_t instance, triangle;
+};
+
+struct LightSample {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 radiance;
+  float pdf_area;   // probability density per unit area of choosing this point (light choice included)
+  int light;        // index into LightSet::lights
+};
+
+class LightSet {
+ public:
+  LightSet() = default;  // no lights
+  LightSet(const Scene& scene, const ScenePose& pose);
+
+  bool empty() const { return lights_.empty(); }
+  const std::vector<EmissiveTriangle>& lights() const { return lights_; }
+
+  // Picks a light by power with u_select, then a uniform point on it with u_point (uniform on the
+  // triangle by the square-root warp, Shirley and Chiu 1997 / pbrt-v4 Sec. A.5.5).
+  LightSample sample(float u_select, glm::vec2 u_point) const;
+  // The area density with which sample() would have produced a point on triangle `triangle` of
+  // `instance` (0 when it is not a light): used for MIS when a BSDF-sampled ray hits a light.
+  float pdf_area(uint32_t instance, uint32_t triangle) const;
+  // Index of the light for (instance, triangle), or -1.
+  int find(uint32_t instance, uint32_t triangle) const;
+
+ private:
+  float area_pdf(size_t light) const;  // pmf / area
+
+  std::vector<EmissiveTriangle> lights_;
+  std::vector<float> cdf_;                  // cdf_[i] = sum of the powers of lights 0..i, normalised to 1
+  std::vector<float> pmf_;                  // probability of choosing light i
+  std::vector<int> first_light_of_instance_;  // lights of an instance are contiguous, in triangle order
+  std::vector<int> instance_triangle_count_;
+};
+
+}  // namespace rtdr

@@ -41,4 +41,10 @@ inline uint8_t to_byte(float encoded) {
   return uint8_t(encoded * 255.0f + 0.5f);
 }
 
+// Demodulation [SVGF17 Sec. 3]: illumination = radiance / albedo, so the filters never blur texture. Where
+// an albedo channel is (near) 0 the division is guarded by a floor (as Falcor's SVGF does); remodulation
+// multiplies by the same factor, so demodulate-then-remodulate is exact for every albedo.
+inline constexpr float kMinDemodulationAlbedo = 1e-3f;
+inline glm::vec3 demodulation_factor(const glm::vec3& albedo) { return glm::max(albedo, glm::vec3(kMinDemodulationAlbedo)); }
+
 }  // namespace rtdr

@@ -1,0 +1,88 @@
+// The path tracer: shading as a function f(G, seed) of one surface sample G and a seed [ASVGF18 Sec. 3.2].
+//
+// Pass: trace_path(context, G, eye, seed, sample_index) -> PathSample.
+//   in:  the frame's scene, pose, Embree scene, lights and materials (TraceContext); a primary surface sample
+//        G = (instance, triangle, barycentrics) from the visibility buffer; the eye it is seen from; the seed
+//   out: demodulation-ready radiance split into direct and indirect [SVGF17 Sec. 3], their components, and the
+//        path record (light sample, shadow blocker, secondary hit) for motion vectors [TRMV21 Sec. 4]
+//
+// The path [SVGF17 Sec. 3]: primary visibility comes from the rasterizer; at each vertex x_k, next-event
+// estimation to an emissive triangle chosen by power, a point uniform on its area, plus one BSDF-sampled ray;
+// vertices 0 .. B where B = max_bounces (1 by default: one indirect ray and two shadow rays per pixel, as in
+// SVGF). Multiple importance sampling with the power heuristic (Veach 1997, Sec. 9.2) joins light and BSDF
+// sampling wherever both are traced; at the last vertex no BSDF ray is traced and light sampling stands alone
+// (MIS weight 1). From the second vertex on, glossy lobes are regularized (Kaplanyan and Dachsbacher 2013) by
+// a roughness floor, TraceOptions::regularized_roughness.
+//
+// Every random number comes from Sampler(seed, sample_index) in a fixed order, so the same G and seed give a
+// bit-identical PathSample: what A-SVGF's re-shading of forward-projected samples relies on [ASVGF18 Eq. 6].
+#pragma once
+
+#include "raster/surface.h"
+#include "raster/visibility.h"
+#include "scenes/scene.h"
+#include "trace/embree_scene.h"
+#include "trace/lights.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace rtdr {
+
+struct TraceOptions {
+  // B: indirect bounces after the primary hit [SVGF17 Sec. 3 uses 1]. Range [0, 1024].
+  int max_bounces = 1;
+  // Path-space regularization: from the second vertex on, roughness is at least this [SVGF17 Sec. 3,
+  // Kaplanyan and Dachsbacher 2013]. Range [0, 1]; 0 turns it off.
+  float regularized_roughness = 0.3f;
+};
+
+// Where the path went, for the motion vectors of [TRMV21 Sec. 4]. kInvalidId instances mean "none".
+struct PathRecord {
+  glm::vec3 light_position{0.0f};   // the primary vertex's light sample
+  uint32_t light_instance = 0xFFFFFFFFu;
+  glm::vec3 blocker_position{0.0f};  // the nearest occluder of that shadow ray, when it is blocked
+  uint32_t blocker_instance = 0xFFFFFFFFu;
+  glm::vec3 secondary_position{0.0f};  // the surface the primary BSDF ray hit
+  uint32_t secondary_instance = 0xFFFFFFFFu;
+  glm::vec3 secondary_direction{0.0f};  // the primary BSDF ray's direction (unit)
+};
+
+// Radiance leaving the primary surface towards the eye, emission excluded (the emission layer holds it).
+struct PathSample {
+  glm::vec3 direct{0.0f};      // light arriving straight from emitters: NEE at x_0 and emitters hit from x_0
+  glm::vec3 indirect{0.0f};    // everything that scattered at least once more
+  // Components, so that TRMV's split can be formed later:
+  glm::vec3 direct_unshadowed{0.0f};  // the NEE term at x_0 without its visibility
+  float direct_visibility = 0.0f;     // 1 when the NEE shadow ray at x_0 reached the light, else 0
+  glm::vec3 indirect_diffuse{0.0f};   // indirect through the diffuse lobe at x_0
+  glm::vec3 indirect_glossy{0.0f};    // indirect through the specular lobe at x_0 (diffuse + glossy = indirect)
+  PathRecord record;
+  glm::vec3 albedo{0.0f};  // of the primary surface: what SVGF demodulates by [SVGF17 Sec. 3]
+  uint32_t rays = 0;  // rays traced (BSDF and shadow rays; primary visibility was rasterized)
+};
+
+// A ray as the tracer cast it, for replaying the same rays in a bare Embree loop (rtdr bench).
+struct LoggedRay {
+  Ray ray;
+  float tfar;
+  bool any_hit;  // cast with rtcOccluded1 (true) or rtcIntersect1 (false)
+};
+
+// Everything of one frame that every path reads.
+struct TraceContext {
+  const Scene& scene;
+  const ScenePose& pose;
+  const EmbreeScene& embree;
+  const LightSet& lights;
+  const SurfaceTable& surfaces;
+  TraceOptions options;
+  std::vector<LoggedRay>* ray_log = nullptr;  // when set, every ray cast is appended (not thread-safe)
+};
+
+PathSample trace_path(const TraceContext& context, const SurfaceSample& primary, const glm::vec3& eye, uint32_t seed,
+                      uint32_t sample_index);
+
+}  // namespace rtdr

@@ -1,0 +1,46 @@
+// The radiance layers of a frame: f(G, seed) at every pixel of the visibility buffer [SVGF17 Sec. 3].
+//
+// Pass: trace_layers(scene, geometry, settings) -> radiance layers of docs/buffers.md.
+//   in:  the frame's geometry (raster/gbuffer_frame.h), the settings (spp, seed, bounces)
+//   out: demodulated direct and indirect illumination and their components, the per-pixel seed, the path
+//        record. With spp = 1 these are the noisy inputs of every denoiser; with spp = N they are the mean of
+//        N samples of the same estimator at the same time: the reference (ground truth).
+//
+// Seeds: pixel (x, y) of frame f has seed pixel_seed(settings.seed, f, x, y), new every frame; sample s of N
+// uses Sampler(seed, s). Re-tracing pixel (x, y) with its stored `rng.seed` reproduces sample 0 exactly.
+// Pixels are independent and rows run in parallel, so the layers are identical for any thread count.
+#pragma once
+
+#include "core/frame.h"
+#include "raster/gbuffer_frame.h"
+#include "scenes/scene.h"
+#include "trace/path_tracer.h"
+
+#include <cstdint>
+#include <functional>
+
+namespace rtdr {
+
+struct RenderSettings {
+  int spp = 1;             // samples per pixel: 1 for denoiser input, e.g. 1024 for a reference. Range [1, 2^20].
+  uint32_t seed = 0;       // the global seed every pixel seed derives from
+  TraceOptions trace;
+};
+
+struct TraceStats {
+  uint64_t rays = 0;       // BSDF and shadow rays traced
+  double seconds = 0.0;    // wall time of the tracing alone
+};
+
+// Called with the number of rows finished since the last call (from worker threads), for progress bars.
+using RowsDone = std::function<void(int rows)>;
+
+// Adds the radiance layers of `geometry`'s frame to `frame` (same size) and returns what it traced.
+TraceStats trace_layers(const Scene& scene, const FrameGeometry& geometry, const RenderSettings& settings,
+                        Frame& frame, const RowsDone& rows_done = {});
+
+// A whole frame: G-buffer, motion and radiance layers.
+Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,
+                   TraceStats* stats = nullptr, const RowsDone& rows_done = {});
+
+}  // namespace rtdr

@@ -1,10 +1,13 @@
-// rtdr render: the G-buffer sequence of a scene, one multi-layer EXR per frame plus a PNG preview.
+// rtdr render: a scene's frames, one multi-layer EXR per frame (G-buffer, motion, path-traced radiance)
+// plus a PNG preview. --spp N > 1 renders reference frames.
 #include "app/commands.h"
 #include "app/preview.h"
 #include "core/error.h"
 #include "core/exr_io.h"
-#include "raster/gbuffer_frame.h"
+#include "core/parallel.h"
+#include "core/progress.h"
 #include "scenes/gltf_loader.h"
+#include "trace/render_frame.h"
 
 #include <chrono>
 #include <cstdio>
@@ -19,6 +22,7 @@ struct RenderOptions {
   std::string frames = "0-9";
   std::string size = "640x360";
   std::string out = "out/render";
+  RenderSettings settings;
 };
 
 std::string frame_file(const std::string& dir, int frame, const char* ext) {
@@ -42,29 +46,48 @@ void run_render(const RenderOptions& o) {
   make_output_dir(o.out);
 
   const auto start = std::chrono::steady_clock::now();
+  TraceStats total;
   for (int f = frames.first; f <= frames.last; ++f) {
-    const Frame frame = render_gbuffer_frame(scene, f, size.width, size.height);
+    TraceStats stats;
+    Frame frame;
+    if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
+      ProgressBar bar("frame " + std::to_string(f) + ", " + std::to_string(o.settings.spp) + " spp", uint64_t(size.height));
+      frame = render_frame(scene, f, size.width, size.height, o.settings, &stats, [&](int rows) { bar.advance(uint64_t(rows)); });
+    } else {
+      frame = render_frame(scene, f, size.width, size.height, o.settings, &stats);
+    }
     write_exr(frame_file(o.out, f, "exr"), frame);
     write_preview_png(frame_file(o.out, f, "png"), frame);
-    std::printf("frame %d  t = %.4f s  -> %s\n", f, scene.time_of_frame(f), frame_file(o.out, f, "exr").c_str());
+    std::printf("frame %d  t = %.4f s  %.2f Mrays/s  -> %s\n", f, scene.time_of_frame(f), 1e-6 * double(stats.rays) / stats.seconds,
+                frame_file(o.out, f, "exr").c_str());
+    total.rays += stats.rays;
+    total.seconds += stats.seconds;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int count = frames.last - frames.first + 1;
-  std::printf("rendered %d frame(s) of '%s' at %dx%d in %.2f s; EXR layers in docs/buffers.md, previews *.png\n",
-              count, scene.name.c_str(), size.width, size.height, seconds);
+  std::printf("rendered %d frame(s) of '%s' at %dx%d, %d spp, in %.2f s; EXR layers in docs/buffers.md, previews *.png\n",
+              count, scene.name.c_str(), size.width, size.height, o.settings.spp, seconds);
+  std::printf("path tracer: %llu rays in %.2f s = %.2f Mrays/s (%d threads)\n", (unsigned long long)total.rays,
+              total.seconds, 1e-6 * double(total.rays) / total.seconds, thread_count());
 }
 
 }  // namespace
 
 Command add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* sub = app.add_subcommand("render", "render a scene's G-buffer sequence to multi-layer EXR files");
+  CLI::App* sub = app.add_subcommand("render", "render a scene's frames (G-buffer, motion, 1 spp or reference radiance) to multi-layer EXR files");
   sub->add_option("--scene", o->scene, "shipped scene name (see scenes/) or path to a .gltf file")
       ->capture_default_str();
   sub->add_option("--frames", o->frames, "inclusive frame range A-B (or one frame A); frame f is at t = f/fps")
       ->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--out", o->out, "output directory (created if missing)")->capture_default_str();
+  sub->add_option("--spp", o->settings.spp, "samples per pixel: 1 for denoiser input, e.g. 1024 for reference frames")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  sub->add_option("--seed", o->settings.seed, "global seed; every pixel's seed derives from it and the frame")
+      ->capture_default_str();
+  sub->add_option("--max-bounces", o->settings.trace.max_bounces, "indirect bounces after the primary hit")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
   return {sub, [o] { run_render(*o); }};
 }
 

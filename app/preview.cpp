@@ -1,14 +1,17 @@
-// The preview mosaic: 3 x 2 tiles of width x height,
-//   albedo (sRGB)        | shading normal (n/2 + 1/2) | depth (near bright, far dark)
-//   motion (see below)   | instance id (hashed hue)   | emission (clamped, sRGB)
-// Motion is shown as R = 1/2 + m.x / s, G = 1/2 + m.y / s, B = 1/2, with s = 2 * max |m| in the frame
-// (at least 1 px), so a still pixel is grey.
+// The preview mosaic: tiles of width x height, 3 per row,
+//   albedo (sRGB)          | shading normal (n/2 + 1/2)  | depth (near bright, far dark)
+//   motion (see below)     | instance id (hashed hue)    | emission (clamped, sRGB)
+//   direct (demodulated)   | indirect (demodulated)      | colour = emission + albedo * (direct + indirect)
+// The third row appears when the frame has radiance layers; radiance tiles are tone mapped with Reinhard's
+// c / (1 + c) per channel, then sRGB-encoded. Motion is shown as R = 1/2 + m.x / s, G = 1/2 + m.y / s,
+// B = 1/2, with s = 2 * max |m| in the frame (at least 1 px), so a still pixel is grey.
 #include "app/preview.h"
 
 #include "core/color.h"
 #include "core/png_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -17,6 +20,8 @@ namespace rtdr {
 namespace {
 
 using PixelColor = std::function<glm::vec3(size_t)>;  // pixel index -> display colour in [0, 1], sRGB
+
+glm::vec3 tone_map(const glm::vec3& c) { return srgb_encode(c / (glm::vec3(1.0f) + c)); }
 
 // A fixed, well-spread colour for an id (golden-ratio hue walk); black for "no surface".
 glm::vec3 id_color(uint32_t id) {
@@ -51,7 +56,7 @@ void write_preview_png(const std::string& path, const Frame& frame) {
   }
   const float motion_scale = 2.0f * max_motion;
 
-  const PixelColor tiles[2][3] = {
+  std::vector<std::array<PixelColor, 3>> tiles = {
       {[&](size_t i) { return srgb_encode(albedo[i]); },
        [&](size_t i) { return instance.data[i] == kInvalidId ? glm::vec3(0.0f) : normal[i] * 0.5f + 0.5f; },
        [&](size_t i) { return glm::vec3(depth.data[i] > 0.0f ? 1.0f - 0.9f * depth.data[i] / max_depth : 0.0f); }},
@@ -59,14 +64,24 @@ void write_preview_png(const std::string& path, const Frame& frame) {
        [&](size_t i) { return id_color(instance.data[i]); },
        [&](size_t i) { return srgb_encode(glm::min(emission[i], glm::vec3(1.0f))); }},
   };
+  std::vector<glm::vec3> direct, indirect;
+  if (frame.has("direct.R")) {
+    direct = frame.get_rgb("direct");
+    indirect = frame.get_rgb("indirect");
+    tiles.push_back({[&](size_t i) { return tone_map(direct[i]); }, [&](size_t i) { return tone_map(indirect[i]); },
+                     [&](size_t i) {
+                       return tone_map(emission[i] + demodulation_factor(albedo[i]) * (direct[i] + indirect[i]));
+                     }});
+  }
 
-  const int mosaic_w = 3 * w, mosaic_h = 2 * h;
+  const int rows = int(tiles.size());
+  const int mosaic_w = 3 * w, mosaic_h = rows * h;
   std::vector<uint8_t> rgb(size_t(mosaic_w) * size_t(mosaic_h) * 3);
-  for (int ty = 0; ty < 2; ++ty)
+  for (int ty = 0; ty < rows; ++ty)
     for (int tx = 0; tx < 3; ++tx)
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-          const glm::vec3 c = tiles[ty][tx](size_t(y) * size_t(w) + size_t(x));
+          const glm::vec3 c = tiles[size_t(ty)][size_t(tx)](size_t(y) * size_t(w) + size_t(x));
           uint8_t* out = &rgb[(size_t(ty * h + y) * size_t(mosaic_w) + size_t(tx * w + x)) * 3];
           for (int k = 0; k < 3; ++k) out[k] = to_byte(c[k]);
         }

@@ -1,0 +1,45 @@
+// Shared pieces of `rtdr bench`: options, the median timer and the scene list. Each stage is one file:
+// bench_raster.cpp, bench_trace.cpp.
+#pragma once
+
+#include "app/commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct BenchOptions {
+  std::string stage = "raster";
+  std::string size = "1280x720";
+  std::string scenes = "all";
+  int runs = 20;
+  int warmup = 3;
+  std::string csv;
+};
+
+// Median wall time in milliseconds of `runs` calls of fn, after `warmup` untimed calls.
+template <class Fn>
+double median_ms(int warmup, int runs, Fn&& fn) {
+  for (int i = 0; i < warmup; ++i) fn();
+  std::vector<double> ms;
+  for (int i = 0; i < runs; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::nth_element(ms.begin(), ms.begin() + ptrdiff_t(ms.size() / 2), ms.end());
+  return ms[ms.size() / 2];
+}
+
+// "all" or a comma-separated list of scene names.
+std::vector<std::string> bench_scene_list(const std::string& text);
+
+// One stage: prints a table on stdout and, when csv is set, appends rows "stage,scene,...,metric,value".
+void bench_raster(const BenchOptions& o, Size size, std::ostream* csv);
+void bench_trace(const BenchOptions& o, Size size, std::ostream* csv);
+
+}  // namespace rtdr

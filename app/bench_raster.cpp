@@ -1,0 +1,51 @@
+// rtdr bench --stage raster: visibility buffer, G-buffer resolve and motion back-projection per shipped
+// scene (issue target: visibility + G-buffer <= 50 ms at 1280x720 on 2 cores; docs/performance.md).
+#include "app/bench.h"
+#include "core/parallel.h"
+#include "raster/backproject.h"
+#include "raster/gbuffer.h"
+#include "raster/view.h"
+#include "raster/visibility.h"
+#include "scenes/gltf_loader.h"
+
+#include <cstdio>
+
+namespace rtdr {
+
+void bench_raster(const BenchOptions& o, const Size size, std::ostream* csv) {
+  std::printf("%-10s %9s %12s %12s %12s %12s   (median ms of %d runs, %d threads)\n", "scene", "size",
+              "visibility", "gbuffer", "vis+gbuffer", "motion", o.runs, thread_count());
+  for (const std::string& name : bench_scene_list(o.scenes)) {
+    const Scene scene = load_scene(name);
+    // Mid-sequence of the first second, so animated scenes are caught moving.
+    const int frame = int(scene.fps / 2);
+    const ScenePose pose = scene.pose(scene.time_of_frame(frame));
+    const ScenePose prev = scene.pose(scene.time_of_frame(frame - 1));
+    const View view = make_view(scene, pose, size.width, size.height);
+    const View prev_view = make_view(scene, prev, size.width, size.height);
+    // Buffers are allocated once and reused, as a renderer does frame after frame; a fresh 720p G-buffer
+    // costs more in page faults than the rasterization itself.
+    VisibilityBuffer vis(size.width, size.height);
+    GBuffer gbuffer(size.width, size.height);
+    rasterize_into(scene, pose, view, vis);
+
+    const double vis_ms = median_ms(o.warmup, o.runs, [&] { rasterize_into(scene, pose, view, vis); });
+    const double gb_ms = median_ms(o.warmup, o.runs, [&] { resolve_gbuffer_into(scene, pose, view, vis, gbuffer); });
+    const double both_ms = median_ms(o.warmup, o.runs, [&] {
+      rasterize_into(scene, pose, view, vis);
+      resolve_gbuffer_into(scene, pose, view, vis, gbuffer);
+    });
+    const double mv_ms = median_ms(o.warmup, o.runs, [&] { backproject_motion(scene, prev, prev_view, vis); });
+    std::printf("%-10s %4dx%-4d %12.2f %12.2f %12.2f %12.2f\n", name.c_str(), size.width, size.height, vis_ms, gb_ms,
+                both_ms, mv_ms);
+    if (csv) {
+      const std::pair<const char*, double> rows[] = {
+          {"visibility", vis_ms}, {"gbuffer", gb_ms}, {"visibility+gbuffer", both_ms}, {"motion", mv_ms}};
+      for (const auto& [pass, ms] : rows)
+        *csv << "raster," << name << ',' << size.width << ',' << size.height << ',' << thread_count() << ",ms_" << pass
+             << ',' << ms << '\n';
+    }
+  }
+}
+
+}  // namespace rtdr

@@ -1,0 +1,100 @@
+// rtdr bench --stage trace: the path tracer at 1 spp per shipped scene.
+//   - the frame time of trace_layers at --size (G-buffer excluded), median of --runs, and of its tracing
+//     loop alone (without the BVH build and the copy of the outputs into the frame's planes);
+//   - the loop's rays per second, against a bare Embree loop that casts the very same rays (recorded from one
+//     trace) with rtcIntersect1 / rtcOccluded1 and nothing else, in the same run: the ratio says how much
+//     of the tracer's time is spent outside Embree (issue target: ratio >= 0.5);
+//   - the memory of one frame's planes as written to EXR.
+#include "app/bench.h"
+#include "core/parallel.h"
+#include "raster/gbuffer_frame.h"
+#include "scenes/gltf_loader.h"
+#include "trace/render_frame.h"
+#include "trace/sampler.h"
+
+#include <cstdio>
+
+namespace rtdr {
+namespace {
+
+// The rays one 1-spp trace of the frame casts, per row (so both loops split the work the same way).
+std::vector<std::vector<LoggedRay>> record_rays(const Scene& scene, const FrameGeometry& g, const RenderSettings& settings,
+                                                const EmbreeScene& embree, const LightSet& lights,
+                                                const SurfaceTable& surfaces) {
+  std::vector<std::vector<LoggedRay>> rows(size_t(g.vis.height));
+  parallel_rows(g.vis.height, [&](int y) {
+    TraceContext context{scene, g.pose, embree, lights, surfaces, settings.trace, &rows[size_t(y)]};
+    for (int x = 0; x < g.vis.width; ++x) {
+      const SurfaceSample s = g.vis.sample(x, y);
+      if (s.valid()) trace_path(context, s, g.view.eye, pixel_seed(settings.seed, g.index, x, y), 0);
+    }
+  });
+  return rows;
+}
+
+// Casts every recorded ray with Embree's own single-ray calls, as a minimal renderer would.
+void cast_bare(const EmbreeScene& embree, const std::vector<std::vector<LoggedRay>>& rows) {
+  parallel_rows(int(rows.size()), [&](int y) {
+    for (const LoggedRay& r : rows[size_t(y)]) {
+      if (r.any_hit)
+        embree.occluded(r.ray, 0.0f, r.tfar);
+      else
+        embree.intersect(r.ray, 0.0f, r.tfar);
+    }
+  });
+}
+
+size_t frame_bytes(const Frame& f) {
+  size_t bytes = 0;
+  for (const auto& [name, plane] : f.float_channels()) bytes += plane.data.size() * sizeof(float);
+  for (const auto& [name, plane] : f.uint_channels()) bytes += plane.data.size() * sizeof(uint32_t);
+  return bytes;
+}
+
+}  // namespace
+
+void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
+  std::printf("%-10s %9s %9s %9s %9s %12s %12s %7s %9s %8s   (median of %d runs, %d threads)\n", "scene", "size",
+              "frame ms", "loop ms", "Mrays", "tracer Mr/s", "bare Mr/s", "ratio", "frame MB", "layers", o.runs, thread_count());
+  const RenderSettings settings;  // 1 spp, seed 0, one indirect bounce: what a denoiser gets
+  for (const std::string& name : bench_scene_list(o.scenes)) {
+    const Scene scene = load_scene(name);
+    const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
+    Frame frame(size.width, size.height);
+    write_gbuffer_layers(scene, g, frame);
+    // The frame time (BVH build, tracing, writing the layers) and, inside it, the tracing loop alone.
+    std::vector<double> loop_seconds;
+    TraceStats stats;
+    const double trace_ms = median_ms(o.warmup, o.runs, [&] {
+      stats = trace_layers(scene, g, settings, frame);
+      loop_seconds.push_back(stats.seconds);
+    });
+    std::nth_element(loop_seconds.begin(), loop_seconds.begin() + ptrdiff_t(loop_seconds.size() / 2), loop_seconds.end());
+    const double loop_ms = 1e3 * loop_seconds[loop_seconds.size() / 2];
+
+    const EmbreeScene embree(scene, g.pose);
+    const LightSet lights(scene, g.pose);
+    const SurfaceTable surfaces(scene, g.pose);
+    const auto rays = record_rays(scene, g, settings, embree, lights, surfaces);
+    const double bare_ms = median_ms(o.warmup, o.runs, [&] { cast_bare(embree, rays); });
+
+    // Both rates count the same rays: the tracing loop (shading, sampling, ray casts) against the casts alone.
+    const double tracer_rate = double(stats.rays) / (1e-3 * loop_ms);
+    const double bare_rate = double(stats.rays) / (1e-3 * bare_ms);
+    const double mb = double(frame_bytes(frame)) / (1024.0 * 1024.0);
+    const size_t layers = frame.float_channels().size() + frame.uint_channels().size();
+    std::printf("%-10s %4dx%-4d %9.2f %9.2f %9.3f %12.2f %12.2f %7.2f %9.1f %8zu\n", name.c_str(), size.width,
+                size.height, trace_ms, loop_ms, 1e-6 * double(stats.rays), 1e-6 * tracer_rate, 1e-6 * bare_rate, tracer_rate / bare_rate, mb, layers);
+    if (csv) {
+      const std::pair<const char*, double> rows[] = {{"ms_frame", trace_ms},           {"ms_trace_loop", loop_ms},    {"ms_bare_embree", bare_ms},
+                                                     {"rays", double(stats.rays)},      {"tracer_rays_per_s", tracer_rate},
+                                                     {"bare_rays_per_s", bare_rate},    {"ratio", tracer_rate / bare_rate},
+                                                     {"frame_bytes", double(frame_bytes(frame))}};
+      for (const auto& [metric, value] : rows)
+        *csv << "trace," << name << ',' << size.width << ',' << size.height << ',' << thread_count() << ',' << metric
+             << ',' << value << '\n';
+    }
+  }
+}
+
+}  // namespace rtdr

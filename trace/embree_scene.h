@@ -17,6 +17,9 @@ namespace rtdr {
 // rtdr::Error. Thread-safe to call.
 RTCDevice embree_device();
 
+// The far end of a ray that may go anywhere.
+inline constexpr float kRayInfinity = 1e30f;
+
 struct Hit {
   uint32_t instance = 0xFFFFFFFFu;  // kInvalidId when the ray escapes
   uint32_t triangle = 0xFFFFFFFFu;
@@ -32,7 +35,7 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   // Closest hit along the ray in [tnear, tfar].
-  Hit intersect(const Ray& ray, float tnear = 0.0f, float tfar = 1e30f) const;
+  Hit intersect(const Ray& ray, float tnear = 0.0f, float tfar = kRayInfinity) const;
   // True when anything blocks the segment (tnear, tfar) (rtcOccluded1).
   bool occluded(const Ray& ray, float tnear, float tfar) const;
 

@@ -1,0 +1,46 @@
+#include "filters/probe.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace rtdr {
+
+void Probe::term(const std::string& name, float value, const std::string& cite) {
+  terms_.push_back({group_, name, cite, {value}});
+}
+void Probe::term(const std::string& name, const glm::vec2& v, const std::string& cite) {
+  terms_.push_back({group_, name, cite, {v.x, v.y}});
+}
+void Probe::term(const std::string& name, const glm::vec3& v, const std::string& cite) {
+  terms_.push_back({group_, name, cite, {v.x, v.y, v.z}});
+}
+
+std::string Probe::text() const {
+  std::string out;
+  char number[32];
+  for (const Term& t : terms_) {
+    std::string values;
+    for (size_t i = 0; i < t.value.size(); ++i) {
+      std::snprintf(number, sizeof number, "%.9g", double(t.value[i]));
+      values += (i ? ", " : "") + std::string(number);
+    }
+    if (t.value.size() > 1) values = "(" + values + ")";
+    out += (t.group.empty() ? std::string("-") : t.group) + " | " + t.name + " = " + values +
+           (t.cite.empty() ? "" : " | " + t.cite) + "\n";
+  }
+  return out;
+}
+
+nlohmann::json Probe::json() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Term& t : terms_) out.push_back({{"group", t.group}, {"name", t.name}, {"value", t.value}, {"cite", t.cite}});
+  return out;
+}
+
+const Probe::Term& Probe::find(const std::string& name, const std::string& group) const {
+  for (const Term& t : terms_)
+    if (t.name == name && t.group == group) return t;
+  throw std::out_of_range("probe has no term '" + name + "' in group '" + group + "'");
+}
+
+}  // namespace rtdr

@@ -1,0 +1,51 @@
+// A probe records every term a golden pass computes at one pixel, each labelled with its paper and
+// equation, so that a person porting the pass to a shader can compare their numbers line by line
+// (`rtdr probe`). Golden per-pixel functions take a `Probe*`; it is null in normal runs, and `note()`
+// then does nothing, so the math is written once and probed where it stands.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+class Probe {
+ public:
+  // Starts a group of terms, e.g. "tap (-2, 0)"; terms before the first group belong to "".
+  void group(const std::string& label) { group_ = label; }
+  void term(const std::string& name, float value, const std::string& cite = "");
+  void term(const std::string& name, const glm::vec2& value, const std::string& cite = "");
+  void term(const std::string& name, const glm::vec3& value, const std::string& cite = "");
+
+  // One term per line, "group | name = value | cite", values with 9 significant digits (enough to
+  // reproduce a float exactly), in the order computed: made to be diffed.
+  std::string text() const;
+  // [{"group": ..., "name": ..., "value": [..], "cite": ...}, ...]
+  nlohmann::json json() const;
+
+  struct Term {
+    std::string group, name, cite;
+    std::vector<float> value;
+  };
+  const std::vector<Term>& terms() const { return terms_; }
+  // The first term called `name` in `group` (throws std::out_of_range when there is none): for tests.
+  const Term& find(const std::string& name, const std::string& group = "") const;
+
+ private:
+  std::string group_;
+  std::vector<Term> terms_;
+};
+
+// Records a term when a probe is attached.
+template <class T>
+inline void note(Probe* probe, const char* name, const T& value, const char* cite = "") {
+  if (probe) probe->term(name, value, cite);
+}
+inline void note_group(Probe* probe, const std::string& label) {
+  if (probe) probe->group(label);
+}
+
+}  // namespace rtdr

@@ -1,0 +1,44 @@
+// Every SVGF tunable, declared once: C++ name, type, default, valid range, the paper's symbol and where the
+// value comes from. The table expands into the SvgfParams struct, the CLI flags (`--svgf.<name>`), the printed
+// configuration and range checks; issue 6's shaders include this same file (GLSL has the C preprocessor).
+//
+// X(type, name, default, min, max, symbol, source)
+#define RTDR_SVGF_PARAMS(X)                                                                                       \
+  X(float, alpha, 0.2f, 0.0f, 1.0f, "alpha", "SVGF17 Sec. 4.1: colour EMA weight, 'alpha = 0.2 worked best'")     \
+  X(float, alpha_moments, 0.2f, 0.0f, 1.0f, "alpha_mu", "SVGF17 Sec. 4.2: moments accumulate like colour")        \
+  X(float, sigma_z, 1.0f, 0.0f, 1e9f, "sigma_z", "SVGF17 Sec. 4.4, Eq. 3")                                       \
+  X(float, sigma_n, 128.0f, 0.0f, 1e9f, "sigma_n", "SVGF17 Sec. 4.4, Eq. 4")                                     \
+  X(float, sigma_l, 4.0f, 0.0f, 1e9f, "sigma_l", "SVGF17 Sec. 4.4, Eq. 5")                                       \
+  X(float, epsilon, 1e-4f, 0.0f, 1.0f, "epsilon", "SVGF17 Eq. 3 and 5: 'a small value to avoid division by zero'") \
+  X(int, atrous_levels, 5, 0, 10, "", "SVGF17 Sec. 4.3: 'a five-level wavelet transform'")                        \
+  X(int, kernel_size, 5, 3, 5, "", "5: the 5x5 B3 kernel of SVGF17 Eq. 1; 3: the 3x3 box of ASVGF18 Sec. 4")      \
+  X(int, history_level, 0, 0, 9, "", "SVGF17 Sec. 4.3: the first level's output is the colour history")          \
+  X(int, variance_min_history, 4, 0, 1000, "", "SVGF17 Sec. 4.2: '<4 frames after a disocclusion' -> 7x7 spatial")\
+  X(int, max_history, 0, 0, 100000, "n_max", "0 = none; Falcor-style alpha = max(alpha, 1/n) (a deviation)")
+
+#ifdef __cplusplus
+#pragma once
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct SvgfParams {
+#define RTDR_SVGF_FIELD(type, name, def, lo, hi, symbol, source) type name = def;
+  RTDR_SVGF_PARAMS(RTDR_SVGF_FIELD)
+#undef RTDR_SVGF_FIELD
+};
+
+// One row of the table, for the CLI, the printed configuration and docs.
+struct ParamInfo {
+  std::string name, symbol, source;
+  double default_value, min, max;
+};
+std::vector<ParamInfo> svgf_param_table();
+// Throws rtdr::Error naming the first parameter outside its range.
+void validate(const SvgfParams& p);
+// "alpha = 0.2 (alpha, SVGF17 Sec. 4.1 ...)" one per line.
+std::string describe(const SvgfParams& p);
+
+}  // namespace rtdr
+#endif

@@ -6,10 +6,12 @@
 #define RTDR_SVGF_PARAMS(X)                                                                                       \
   X(float, alpha, 0.2f, 0.0f, 1.0f, "alpha", "SVGF17 Sec. 4.1: colour EMA weight, 'alpha = 0.2 worked best'")     \
   X(float, alpha_moments, 0.2f, 0.0f, 1.0f, "alpha_mu", "SVGF17 Sec. 4.2: moments accumulate like colour")        \
+  X(float, temporal_depth_relative, 0.1f, 0.0f, 1e9f, "", "SVGF17 Sec. 4.1 consistency: relative depth (temporal.h)") \
+  X(float, temporal_normal_cosine, 0.9f, -1.0f, 1.0f, "", "SVGF17 Sec. 4.1 consistency: min n . n' (temporal.h)")     \
   X(float, sigma_z, 1.0f, 0.0f, 1e9f, "sigma_z", "SVGF17 Sec. 4.4, Eq. 3")                                       \
   X(float, sigma_n, 128.0f, 0.0f, 1e9f, "sigma_n", "SVGF17 Sec. 4.4, Eq. 4")                                     \
   X(float, sigma_l, 4.0f, 0.0f, 1e9f, "sigma_l", "SVGF17 Sec. 4.4, Eq. 5")                                       \
-  X(float, epsilon, 1e-4f, 0.0f, 1.0f, "epsilon", "SVGF17 Eq. 3 and 5: 'a small value to avoid division by zero'") \
+  X(float, epsilon, 1e-4f, 1e-12f, 1.0f, "epsilon", "SVGF17 Eq. 3 and 5: a small value to avoid division by zero (> 0: 0/0 on flat planes)") \
   X(int, atrous_levels, 5, 0, 10, "", "SVGF17 Sec. 4.3: 'a five-level wavelet transform'")                        \
   X(int, kernel_size, 5, 3, 5, "", "5: the 5x5 B3 kernel of SVGF17 Eq. 1; 3: the 3x3 box of ASVGF18 Sec. 4")      \
   X(int, history_level, 0, 0, 9, "", "SVGF17 Sec. 4.3: the first level's output is the colour history")          \
@@ -18,27 +20,20 @@
 
 #ifdef __cplusplus
 #pragma once
-#include <string>
-#include <vector>
+#include "filters/params.h"
 
 namespace rtdr {
 
 struct SvgfParams {
-#define RTDR_SVGF_FIELD(type, name, def, lo, hi, symbol, source) type name = def;
-  RTDR_SVGF_PARAMS(RTDR_SVGF_FIELD)
-#undef RTDR_SVGF_FIELD
+  RTDR_SVGF_PARAMS(RTDR_PARAM_FIELD)
 };
 
-// One row of the table, for the CLI, the printed configuration and docs.
-struct ParamInfo {
-  std::string name, symbol, source;
-  double default_value, min, max;
-};
 std::vector<ParamInfo> svgf_param_table();
+std::vector<double> param_values(const SvgfParams& params);
 // Throws rtdr::Error naming the first parameter outside its range.
-void validate(const SvgfParams& p);
-// "alpha = 0.2 (alpha, SVGF17 Sec. 4.1 ...)" one per line.
-std::string describe(const SvgfParams& p);
+void validate(const SvgfParams& params);
+// "alpha = 0.2  (alpha; SVGF17 Sec. 4.1 ...)" one per line.
+std::string describe(const SvgfParams& params);
 
 }  // namespace rtdr
 #endif

@@ -1,0 +1,30 @@
+// Tunables declared once. Each algorithm lists its parameters in one X-macro table,
+//   X(type, name, default, min, max, symbol, source)
+// and these expansions turn the table into its struct, its rows (for CLI flags, docs and the printed
+// configuration) and its range checks, so no parameter's default or range is written twice (STYLE.md,
+// "Declare every tunable once"). The GLSL ports include the same tables.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct ParamInfo {
+  std::string name, symbol, source;
+  double default_value, min, max;
+};
+
+// Throws rtdr::Error naming `what`, the first parameter outside its [min, max], and its value.
+void check_params(const std::string& what, const std::vector<ParamInfo>& table, const std::vector<double>& values);
+// "name = value  (symbol; source)", one line per parameter.
+std::string describe_params(const std::vector<ParamInfo>& table, const std::vector<double>& values);
+
+}  // namespace rtdr
+
+// Expansions for a parameter table X-macro: a struct member with its default, a ParamInfo row, and the
+// current value of the member of `params`.
+#define RTDR_PARAM_FIELD(type, name, def, lo, hi, symbol, source) type name = def;
+#define RTDR_PARAM_ROW(type, name, def, lo, hi, symbol, source) \
+  ::rtdr::ParamInfo{#name, symbol, source, double(def), double(lo), double(hi)},
+#define RTDR_PARAM_VALUE(type, name, def, lo, hi, symbol, source) double(params.name),

@@ -1,5 +1,5 @@
 // Shared pieces of `rtdr bench`: options, the median timer and the scene list. Each stage is one file:
-// bench_raster.cpp, bench_trace.cpp.
+// bench_raster.cpp, bench_trace.cpp, bench_filter.cpp.
 #pragma once
 
 #include "app/commands.h"
@@ -19,6 +19,7 @@ struct BenchOptions {
   int runs = 20;
   int warmup = 3;
   std::string csv;
+  std::string method = "svgf";  // --stage filter
 };
 
 // Median wall time in milliseconds of `runs` calls of fn, after `warmup` untimed calls.
@@ -41,5 +42,6 @@ std::vector<std::string> bench_scene_list(const std::string& text);
 // One stage: prints a table on stdout and, when csv is set, appends rows "stage,scene,...,metric,value".
 void bench_raster(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_trace(const BenchOptions& o, Size size, std::ostream* csv);
+void bench_filter(const BenchOptions& o, Size size, std::ostream* csv);
 
 }  // namespace rtdr

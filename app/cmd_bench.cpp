@@ -3,6 +3,7 @@
 //   --stage raster: visibility buffer, G-buffer resolve and motion back-projection (bench_raster.cpp)
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
+//   --stage filter: a denoising method per pass on a rendered sequence (bench_filter.cpp)
 #include "app/bench.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -33,8 +34,10 @@ void run_bench(const BenchOptions& o) {
     bench_raster(o, size, csv_out);
   else if (o.stage == "trace")
     bench_trace(o, size, csv_out);
+  else if (o.stage == "filter")
+    bench_filter(o, size, csv_out);
   else
-    throw Error("--stage '" + o.stage + "' is not one of: raster, trace");
+    throw Error("--stage '" + o.stage + "' is not one of: raster, trace, filter");
   if (!o.csv.empty()) {
     write_text_file(o.csv, csv.str());
     std::printf("wrote %s\n", o.csv.c_str());
@@ -46,12 +49,13 @@ void run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "time a stage on the shipped scenes (median after warm-up)");
-  sub->add_option("--stage", o->stage, "what to time: raster, trace")->capture_default_str();
+  sub->add_option("--stage", o->stage, "what to time: raster, trace, filter")->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--scenes", o->scenes, "comma-separated scene names, or all")->capture_default_str();
   sub->add_option("--runs", o->runs, "timed runs (the median is reported)")->check(CLI::Range(1, 10000))->capture_default_str();
   sub->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 1000))->capture_default_str();
   sub->add_option("--csv", o->csv, "also write the timings to this CSV file");
+  sub->add_option("--method", o->method, "the method --stage filter times (see rtdr filter)")->capture_default_str();
   return {sub, [o] { run_bench(*o); }};
 }
 

@@ -17,6 +17,8 @@ struct Command {
 
 Command add_render_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
+Command add_filter_command(CLI::App& app);
+Command add_probe_command(CLI::App& app);
 
 // Shared option parsing, with one-line rtdr::Error messages naming the flag.
 struct Size {

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "worker threads (0 = all cores); outputs are identical for any count")
       ->check(CLI::Range(0, 1024));
 
-  const std::vector<rtdr::Command> commands = {rtdr::add_render_command(app), rtdr::add_bench_command(app)};
+  const std::vector<rtdr::Command> commands = {rtdr::add_render_command(app), rtdr::add_filter_command(app),
+                                               rtdr::add_probe_command(app), rtdr::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);

@@ -51,7 +51,8 @@ size_t count_files(const fs::path& dir) {
   return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
-// The channel names in the first column of the tables of docs/buffers.md: each `name` in the cell, where
+// The channel names in the first column of the tables of docs/buffers.md that describe rendered frames
+// (everything before "# Filter outputs"): each `name` in the cell, where
 // the last part may list alternatives, `path.light.X/Y/Z` meaning path.light.X, path.light.Y, path.light.Z.
 std::set<std::string> documented_channels() {
   std::set<std::string> names;
@@ -59,6 +60,7 @@ std::set<std::string> documented_channels() {
   const std::regex row("^\\| (`[^|]+) \\|");
   const std::regex name("`([a-z.]+)\\.([A-Za-z/]+)`");
   for (std::string line; std::getline(doc, line);) {
+    if (line.rfind("# Filter outputs", 0) == 0) break;  // what follows is written by rtdr filter
     std::smatch cell;
     if (!std::regex_search(line, cell, row)) continue;
     const std::string text = cell[1].str();

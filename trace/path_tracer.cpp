@@ -98,6 +98,8 @@ glm::vec3 emission_hit(const TraceContext& c, const SurfacePoint& x, const Surfa
 
 }  // namespace
 
+// One path from the primary hit [SVGF17 Sec. 3]; all its random numbers come from (seed, sample_index), so
+// re-shading the same G with the same seed is bit-identical [ASVGF18 Sec. 3.2, ASVGF18 Eq. 6].
 PathSample trace_path(const TraceContext& c, const SurfaceSample& primary, const glm::vec3& eye, uint32_t seed,
                       uint32_t sample_index) {
   PathSample out;

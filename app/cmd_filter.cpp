@@ -1,0 +1,146 @@
+// rtdr filter: runs a denoising method over a rendered sequence and writes the filtered frames.
+// rtdr probe:  runs it up to one frame, then prints every term of one pass at one pixel.
+#include "app/commands.h"
+#include "app/sequence.h"
+#include "core/atomic_file.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "core/png_io.h"
+#include "filters/image.h"
+#include "filters/method.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace rtdr {
+namespace {
+
+// The SVGF tunables as flags, one per row of the table in filters/svgf/svgf_params.h.
+void add_svgf_flags(CLI::App* sub, SvgfParams& p) {
+#define RTDR_SVGF_FLAG(type, name, def, lo, hi, symbol, source) \
+  sub->add_option("--" #name, p.name, std::string(source))->capture_default_str()->group("SVGF parameters");
+  RTDR_SVGF_PARAMS(RTDR_SVGF_FLAG)
+#undef RTDR_SVGF_FLAG
+}
+
+struct FilterOptions {
+  std::string method = "svgf";
+  std::string in, out;
+  std::string frames;
+  bool dump = false;
+  SvgfParams params;
+};
+
+std::string output_file(const std::string& dir, int frame, const char* ext) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
+  return (std::filesystem::path(dir) / name).string();
+}
+
+void write_display_png(const std::string& path, const Frame& out) {
+  const RgbPlane display = rgb_plane(out, "display");
+  std::vector<uint8_t> rgb(display.data.size() * 3);
+  for (size_t i = 0; i < display.data.size(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = to_byte(srgb_encode(display.data[i][c]));
+  write_png(path, display.width, display.height, rgb);
+}
+
+void run_filter(const FilterOptions& o) {
+  const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (!std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is not a directory that can be created");
+
+  std::printf("method %s on %zu frame(s) of %s\n%s", method->name().c_str(), frames.size(), o.in.c_str(),
+              o.method == "none" ? "" : describe(o.params).c_str());
+  Frame first;
+  for (const SequenceFrame& f : frames) {
+    const Frame in = read_filter_input(f.path, first.width() ? &first : nullptr);
+    if (!first.width()) first = Frame(in.width(), in.height());
+    Frame dump(in.width(), in.height());
+    Frame out = method->filter(in, o.dump ? &dump : nullptr);
+    if (o.dump)
+      for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
+    write_exr(output_file(o.out, f.index, "exr"), out);
+    write_display_png(output_file(o.out, f.index, "png"), out);
+    double total = 0.0;
+    for (const auto& [pass, ms] : method->pass_times()) total += ms;
+    std::printf("frame %d  %.1f ms  -> %s\n", f.index, total, output_file(o.out, f.index, "exr").c_str());
+  }
+}
+
+struct ProbeOptions {
+  std::string method = "svgf";
+  std::string in;
+  int frame = 0;
+  std::string pixel;
+  std::string pass = "atrous";
+  std::string stream = "direct";
+  int level = 0;
+  bool json = false;
+  SvgfParams params;
+};
+
+void run_probe(const ProbeOptions& o) {
+  const size_t comma = o.pixel.find(',');
+  int x = -1, y = -1;
+  if (comma == std::string::npos || std::sscanf(o.pixel.c_str(), "%d,%d", &x, &y) != 2)
+    throw Error("--pixel '" + o.pixel + "' is not X,Y");
+  const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  // The history of frame F is built by every frame before it: run the method from the first frame on.
+  const std::vector<SequenceFrame> all = list_sequence(o.in, "");
+  Frame first;
+  bool found = false;
+  for (const SequenceFrame& f : all) {
+    if (f.index > o.frame) break;
+    const Frame in = read_filter_input(f.path, first.width() ? &first : nullptr);
+    if (!first.width()) first = Frame(in.width(), in.height());
+    method->filter(in, nullptr);
+    found = f.index == o.frame;
+  }
+  if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");
+  const Probe probe = method->probe(o.pass, x, y, o.stream, o.level);
+  if (o.json) {
+    const nlohmann::json out = {{"method", o.method}, {"frame", o.frame}, {"pixel", {x, y}}, {"pass", o.pass},
+                                {"stream", o.stream}, {"level", o.level}, {"terms", probe.json()}};
+    std::printf("%s\n", out.dump(2).c_str());
+  } else {
+    std::printf("# %s %s, frame %d, pixel (%d, %d), stream %s, level %d\n# group | term = value | source\n%s",
+                o.method.c_str(), o.pass.c_str(), o.frame, x, y, o.stream.c_str(), o.level, probe.text().c_str());
+  }
+}
+
+}  // namespace
+
+Command add_filter_command(CLI::App& app) {
+  auto o = std::make_shared<FilterOptions>();
+  CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
+  sub->add_option("--method", o->method, "svgf, accum, eaw, eaw-accum or none")->capture_default_str();
+  sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
+  sub->add_option("--out", o->out, "output directory (created if missing)")->required();
+  sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");
+  sub->add_flag("--dump-passes", o->dump, "also write every intermediate buffer of every pass (docs/buffers.md)");
+  add_svgf_flags(sub, o->params);
+  return {sub, [o] { run_filter(*o); }};
+}
+
+Command add_probe_command(CLI::App& app) {
+  auto o = std::make_shared<ProbeOptions>();
+  CLI::App* sub = app.add_subcommand("probe", "print every term of one pass at one pixel");
+  sub->add_option("--method", o->method, "the method whose pass to probe")->capture_default_str();
+  sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
+  sub->add_option("--frame", o->frame, "frame index (earlier frames are filtered first, for history)")->required();
+  sub->add_option("--pixel", o->pixel, "X,Y")->required();
+  sub->add_option("--pass", o->pass, "temporal, variance, prefilter, atrous, eaw, modulate, tonemap, taa")
+      ->capture_default_str();
+  sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes)")->capture_default_str();
+  sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
+  sub->add_flag("--json", o->json, "print JSON instead of text");
+  add_svgf_flags(sub, o->params);
+  return {sub, [o] { run_probe(*o); }};
+}
+
+}  // namespace rtdr

@@ -1,0 +1,58 @@
+// The registry of methods: one line each. See method.h.
+#include "filters/method.h"
+
+#include "core/error.h"
+#include "filters/svgf/svgf.h"
+
+#include <functional>
+
+namespace rtdr {
+namespace {
+
+// The options of a method: which stages run; every parameter keeps its declared default.
+SvgfOptions stages(const char* name, bool temporal, SpatialFilter spatial, bool taa = true) {
+  SvgfOptions o;
+  o.name = name;
+  o.temporal = temporal;
+  o.spatial = spatial;
+  o.taa = taa;
+  return o;
+}
+
+struct MethodEntry {
+  const char* name;
+  std::function<SvgfOptions()> options;
+};
+
+const std::vector<MethodEntry>& registry() {
+  static const std::vector<MethodEntry> methods = {
+      {"svgf", [] { return stages("svgf", true, SpatialFilter::Atrous); }},
+      {"accum", [] { return stages("accum", true, SpatialFilter::None); }},
+      {"eaw", [] { return stages("eaw", false, SpatialFilter::Eaw); }},
+      {"eaw-accum", [] { return stages("eaw-accum", true, SpatialFilter::Eaw); }},
+      {"none", [] { return stages("none", false, SpatialFilter::None, false); }},
+  };
+  return methods;
+}
+
+}  // namespace
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const MethodEntry& m : registry()) names.push_back(m.name);
+  return names;
+}
+
+std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params) {
+  for (const MethodEntry& m : registry()) {
+    if (name != m.name) continue;
+    SvgfOptions options = m.options();
+    options.svgf = params;
+    return std::make_unique<SvgfFilter>(options);
+  }
+  std::string known;
+  for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("--method '" + name + "' is not one of: " + known);
+}
+
+}  // namespace rtdr

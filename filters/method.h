@@ -1,0 +1,52 @@
+// A denoising method as the tools see it: frames in, frames out, in sequence order, with whatever
+// history it keeps. `rtdr filter`, `rtdr probe`, the evaluation harness and the benchmarks all go through
+// this interface, so adding a method is one line in make_method().
+//
+// Input frame: the layers `rtdr render` writes (docs/buffers.md): the G-buffer, motion, and the demodulated
+// 1-spp `direct` and `indirect` illumination. Output frame: `color.R/G/B` (linear HDR radiance, remodulated
+// and recombined: emission + albedo * (direct + indirect)) and `display.R/G/B` (tone mapped, then TAA where
+// the method uses it; display-referred linear, sRGB-encode to view).
+#pragma once
+
+#include "core/frame.h"
+#include "filters/probe.h"
+#include "filters/svgf/svgf_params.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+// Wall time of each pass of the last frame, milliseconds, by pass name ("temporal", "atrous", ...).
+using PassTimes = std::map<std::string, double>;
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  virtual std::string name() const = 0;
+  // Filters the next frame of the sequence. When `dump` is given, every intermediate buffer is added to it
+  // as layers named in docs/buffers.md ("Filter passes").
+  virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
+  // Forgets all history (the next frame is treated as the first).
+  virtual void reset() = 0;
+  // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
+  // probe attached. `stream` is "direct" or "indirect" for per-stream passes, `level` the a-trous level.
+  virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
+  // The passes probe() accepts.
+  virtual std::vector<std::string> probe_passes() const = 0;
+  const PassTimes& pass_times() const { return times_; }
+
+ protected:
+  PassTimes times_;
+};
+
+// "svgf", "accum" (temporal accumulation only), "eaw" (Dammertz 2010, no temporal reuse), "eaw-accum"
+// (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated). Throws rtdr::Error for an
+// unknown name, listing the known ones.
+// `params` are SVGF's tunables (svgf_params.h); methods that do not use one ignore it.
+std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params = {});
+std::vector<std::string> method_names();
+
+}  // namespace rtdr

@@ -1,0 +1,192 @@
+// The SVGF pipeline: passes in the paper's order, histories carried between frames, every intermediate
+// buffer kept for dumps and probes. See svgf.h.
+#include "filters/svgf/svgf.h"
+
+#include "core/error.h"
+#include "filters/svgf/modulate.h"
+#include "filters/svgf/prefilter.h"
+#include "filters/svgf/variance.h"
+
+#include <chrono>
+
+namespace rtdr {
+namespace {
+
+// Dump layer names: filter.<stream>.<buffer>[.<channel>], listed in docs/buffers.md ("Filter passes").
+void dump_rgb(Frame* dump, const std::string& layer, const RgbPlane& p) {
+  if (dump) set_rgb_plane(*dump, layer, p);
+}
+void dump_float(Frame* dump, const std::string& channel, const FloatPlane& p) {
+  if (dump) set_float_plane(*dump, channel, p);
+}
+
+}  // namespace
+
+SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) { validate(options_.svgf); }
+
+void SvgfFilter::reset() {
+  direct_ = Stream();
+  indirect_ = Stream();
+  prev_surface_ = SurfacePlanes();
+  taa_history_ = RgbPlane();
+}
+
+double SvgfFilter::time_pass(const std::string& pass, const std::function<void()>& run) {
+  const auto start = std::chrono::steady_clock::now();
+  run();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  times_[pass] += ms;
+  return ms;
+}
+
+const RgbPlane& SvgfFilter::Stream::level_input_color(int level) const {
+  if (level == 0) return temporal.color;
+  return eaw_levels.empty() ? levels[size_t(level - 1)].color : eaw_levels[size_t(level - 1)];
+}
+
+const FloatPlane& SvgfFilter::Stream::level_input_variance(int level) const {
+  return level == 0 ? variance : levels[size_t(level - 1)].variance;
+}
+
+const RgbPlane& SvgfFilter::Stream::filtered() const {
+  if (!levels.empty()) return levels.back().color;
+  if (!eaw_levels.empty()) return eaw_levels.back();
+  return temporal.color;
+}
+
+const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& prefix) {
+  const SvgfParams& p = options_.svgf;
+  s.noisy = std::move(noisy);
+  // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
+  //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
+  s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
+  time_pass("temporal", [&] { s.temporal = temporal_pass(s.noisy, surface_, s.seen_history, p); });
+  dump_rgb(dump, prefix + "temporal", s.temporal.color);
+  dump_float(dump, prefix + "moments.mu1", s.temporal.moment1);
+  dump_float(dump, prefix + "moments.mu2", s.temporal.moment2);
+  dump_float(dump, prefix + "history_length", s.temporal.length);
+
+  // 2. The spatial filter, level by level: SVGF's variance-guided a-trous [Sec. 4.2-4.4] or EAW. Level i
+  //    reads level i - 1's output (Stream::level_input_color).
+  s.levels.clear();
+  s.eaw_levels.clear();
+  int history_level = -1;  // which level's output becomes the colour history; -1: the temporal output
+  if (options_.spatial == SpatialFilter::Atrous) {
+    time_pass("variance", [&] { s.variance = variance_pass(s.temporal, surface_, p); });
+    dump_float(dump, prefix + "variance", s.variance);
+    for (int level = 0; level < p.atrous_levels; ++level) {
+      time_pass("atrous", [&] {
+        s.levels.push_back(atrous_level(s.level_input_color(level), s.level_input_variance(level), surface_, level, p));
+      });
+      const std::string l = prefix + "level" + std::to_string(level);
+      dump_rgb(dump, l, s.levels.back().color);
+      dump_float(dump, l + ".variance", s.levels.back().variance);
+      dump_float(dump, l + ".prefiltered_variance", s.levels.back().prefiltered_variance);
+    }
+    // The first level's output is fed back as the colour history [Sec. 4.3].
+    if (p.history_level < p.atrous_levels) history_level = p.history_level;
+  } else if (options_.spatial == SpatialFilter::Eaw) {
+    for (int level = 0; level < options_.eaw.levels; ++level) {
+      time_pass("eaw", [&] {
+        s.eaw_levels.push_back(eaw_level(s.level_input_color(level), position_, surface_, level, options_.eaw));
+      });
+      dump_rgb(dump, prefix + "level" + std::to_string(level), s.eaw_levels.back());
+    }
+    if (options_.eaw.levels > 0) history_level = 0;
+  }
+  dump_rgb(dump, prefix + "filtered", s.filtered());
+
+  // 3. What the next frame reads: the colour history, the moments, the history length, this G-buffer.
+  const RgbPlane& history = history_level < 0 ? s.temporal.color
+                            : s.levels.empty() ? s.eaw_levels[size_t(history_level)]
+                                               : s.levels[size_t(history_level)].color;
+  s.history = {history, s.temporal.moment1, s.temporal.moment2, s.temporal.length, surface_};
+  return s.filtered();
+}
+
+Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
+  times_.clear();
+  surface_ = SurfacePlanes::from_frame(in);
+  albedo_ = rgb_plane(in, "albedo");
+  emission_ = rgb_plane(in, "emission");
+  if (options_.spatial == SpatialFilter::Eaw) position_ = xyz_plane(in, "position");
+  // A sequence must keep its size: the histories are per pixel.
+  if (direct_.history.color.width != 0 && direct_.history.color.width != in.width())
+    throw Error(in.source + ": frame size changed within the sequence");
+
+  // The two streams are filtered separately [SVGF17 Sec. 3].
+  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "filter.direct.");
+  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), dump, "filter.indirect.");
+  // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
+  time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
+  time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
+  seen_taa_history_ = taa_history_;
+  if (options_.taa && taa_history_.width == in.width())
+    time_pass("taa", [&] { display_ = taa_pass(tonemapped_, taa_history_, surface_.motion, options_.taa_params); });
+  else
+    display_ = tonemapped_;
+  taa_history_ = display_;
+  dump_rgb(dump, "filter.tonemapped", tonemapped_);
+
+  Frame out(in.width(), in.height());
+  out.source = in.source;
+  set_rgb_plane(out, "color", color_);
+  set_rgb_plane(out, "display", display_);
+  return out;
+}
+
+const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
+  if (name == "direct") return direct_;
+  if (name == "indirect") return indirect_;
+  throw Error("--stream '" + name + "' is not direct or indirect");
+}
+
+std::vector<std::string> SvgfFilter::probe_passes() const {
+  std::vector<std::string> passes = {"temporal"};
+  if (options_.spatial == SpatialFilter::Atrous) passes.insert(passes.end(), {"variance", "prefilter", "atrous"});
+  if (options_.spatial == SpatialFilter::Eaw) passes.push_back("eaw");
+  passes.insert(passes.end(), {"modulate", "tonemap"});
+  if (options_.taa) passes.push_back("taa");
+  return passes;
+}
+
+Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string& stream_name, int level) const {
+  if (!inside(surface_.depth, x, y))
+    throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
+                std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
+  const SvgfParams& p = options_.svgf;
+  Probe probe;
+  const Stream& s = stream(stream_name);
+  auto need_level = [&](size_t count) {
+    if (level < 0 || size_t(level) >= count)
+      throw Error("--level " + std::to_string(level) + " is not one of the " + std::to_string(count) + " levels run");
+  };
+  if (pass == "temporal") {
+    temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe);
+  } else if (pass == "variance" && options_.spatial == SpatialFilter::Atrous) {
+    variance_pixel(s.temporal, surface_, p, x, y, &probe);
+  } else if (pass == "prefilter" && options_.spatial == SpatialFilter::Atrous) {
+    need_level(s.levels.size());
+    prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
+  } else if (pass == "atrous" && options_.spatial == SpatialFilter::Atrous) {
+    need_level(s.levels.size());
+    atrous_pixel(s.level_input_color(level), s.level_input_variance(level), s.levels[size_t(level)].prefiltered_variance,
+                 surface_, level, p, x, y, &probe);
+  } else if (pass == "eaw" && options_.spatial == SpatialFilter::Eaw) {
+    need_level(s.eaw_levels.size());
+    eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, &probe);
+  } else if (pass == "modulate") {
+    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y), &probe);
+  } else if (pass == "tonemap") {
+    tonemap_pixel(color_.at(x, y), options_.tonemap, &probe);
+  } else if (pass == "taa" && options_.taa && seen_taa_history_.width == surface_.width()) {
+    taa_pixel(tonemapped_, seen_taa_history_, surface_.motion, x, y, options_.taa_params, TaaJitter{}, &probe);
+  } else {
+    std::string known;
+    for (const std::string& name : probe_passes()) known += (known.empty() ? "" : ", ") + name;
+    throw Error("--pass '" + pass + "' cannot be probed for method " + options_.name + " on this frame (passes: " + known + ")");
+  }
+  return probe;
+}
+
+}  // namespace rtdr

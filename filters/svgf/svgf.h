@@ -1,0 +1,70 @@
+// SVGF, the whole pipeline [SVGF17 Sec. 3 and 4], as a Method (filters/method.h). Per frame, for each of
+// the demodulated direct and indirect illumination separately:
+//   temporal accumulation (temporal.h) -> variance estimate (variance.h) -> a-trous levels (atrous.h),
+//   the level `history_level` becoming next frame's colour history;
+// then remodulation and recombination (modulate.h), tone mapping (tonemap.h) and TAA (filters/taa/taa.h).
+// The same class runs the baselines of filters/baselines/ by switching stages off or swapping the spatial
+// filter, so every method shares the exact same passes (README.md in this folder lists them).
+#pragma once
+
+#include "filters/baselines/eaw.h"
+#include "filters/method.h"
+#include "filters/svgf/atrous.h"
+#include "filters/svgf/svgf_params.h"
+#include "filters/svgf/svgf_shared.h"
+#include "filters/svgf/temporal.h"
+#include "filters/svgf/tonemap.h"
+#include "filters/taa/taa.h"
+
+namespace rtdr {
+
+enum class SpatialFilter { None, Atrous, Eaw };
+
+struct SvgfOptions {
+  std::string name = "svgf";
+  bool temporal = true;                        // temporal accumulation of colour and moments
+  SpatialFilter spatial = SpatialFilter::Atrous;
+  bool taa = true;                             // temporal antialiasing after tone mapping
+  SvgfParams svgf;
+  EawParams eaw;
+  TonemapParams tonemap;
+  TaaParams taa_params;
+};
+
+class SvgfFilter : public Method {
+ public:
+  explicit SvgfFilter(const SvgfOptions& options);
+  std::string name() const override { return options_.name; }
+  Frame filter(const Frame& in, Frame* dump) override;
+  void reset() override;
+  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
+  std::vector<std::string> probe_passes() const override;
+
+ private:
+  // What one illumination stream carries from frame to frame, and what each of its passes saw last frame.
+  struct Stream {
+    TemporalHistory history;          // colour history, moments, history length, previous G-buffer
+    RgbPlane noisy;                   // this frame's input
+    TemporalHistory seen_history;     // the history the temporal pass read this frame
+    TemporalOutput temporal;          // its output
+    FloatPlane variance;              // the variance estimate
+    std::vector<AtrousOutput> levels;         // each a-trous level's output (prefiltered variance included)
+    std::vector<RgbPlane> eaw_levels;         // or each EAW level's output
+    // The input of level i is the output of level i - 1; level 0 reads the temporal output.
+    const RgbPlane& level_input_color(int level) const;
+    const FloatPlane& level_input_variance(int level) const;
+    const RgbPlane& filtered() const;  // the stream's result: the last level's output
+  };
+
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& prefix);
+  double time_pass(const std::string& pass, const std::function<void()>& run);
+  const Stream& stream(const std::string& name) const;
+
+  SvgfOptions options_;
+  Stream direct_, indirect_;
+  SurfacePlanes surface_, prev_surface_;
+  RgbPlane albedo_, emission_, position_;
+  RgbPlane color_, tonemapped_, taa_history_, seen_taa_history_, display_;
+};
+
+}  // namespace rtdr

@@ -28,3 +28,9 @@ std::string describe_params(const std::vector<ParamInfo>& table, const std::vect
 #define RTDR_PARAM_ROW(type, name, def, lo, hi, symbol, source) \
   ::rtdr::ParamInfo{#name, symbol, source, double(def), double(lo), double(hi)},
 #define RTDR_PARAM_VALUE(type, name, def, lo, hi, symbol, source) double(params.name),
+// Sets member `name` of `params` to `value` when `key` names it (inside a function returning bool).
+#define RTDR_PARAM_SET(type, name, def, lo, hi, symbol, source) \
+  if (key == #name) {                                              \
+    params.name = type(value);                                     \
+    return true;                                                   \
+  }

@@ -34,6 +34,8 @@ std::vector<double> param_values(const SvgfParams& params);
 void validate(const SvgfParams& params);
 // "alpha = 0.2  (alpha; SVGF17 Sec. 4.1 ...)" one per line.
 std::string describe(const SvgfParams& params);
+// Sets the parameter called `key` (a row name of the table); false when there is no such row.
+bool set_param(SvgfParams& params, const std::string& key, double value);
 
 }  // namespace rtdr
 #endif

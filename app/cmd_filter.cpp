@@ -54,12 +54,14 @@ void run_filter(const FilterOptions& o) {
   std::filesystem::create_directories(o.out, ec);
   if (!std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is not a directory that can be created");
 
+  // Every input is read and checked before anything is written, so bad input leaves no output at all.
+  SequenceShape shape;
+  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape);
+
   std::printf("method %s on %zu frame(s) of %s\n%s", method->name().c_str(), frames.size(), o.in.c_str(),
               o.method == "none" ? "" : describe(o.params).c_str());
-  Frame first;
   for (const SequenceFrame& f : frames) {
-    const Frame in = read_filter_input(f.path, first.width() ? &first : nullptr);
-    if (!first.width()) first = Frame(in.width(), in.height());
+    const Frame in = read_exr(f.path);
     Frame dump(in.width(), in.height());
     Frame out = method->filter(in, o.dump ? &dump : nullptr);
     if (o.dump)
@@ -92,13 +94,11 @@ void run_probe(const ProbeOptions& o) {
   const std::unique_ptr<Method> method = make_method(o.method, o.params);
   // The history of frame F is built by every frame before it: run the method from the first frame on.
   const std::vector<SequenceFrame> all = list_sequence(o.in, "");
-  Frame first;
+  SequenceShape shape;
   bool found = false;
   for (const SequenceFrame& f : all) {
     if (f.index > o.frame) break;
-    const Frame in = read_filter_input(f.path, first.width() ? &first : nullptr);
-    if (!first.width()) first = Frame(in.width(), in.height());
-    method->filter(in, nullptr);
+    method->filter(read_filter_input(f.path, shape), nullptr);
     found = f.index == o.frame;
   }
   if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");

@@ -34,9 +34,15 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
   return selected;
 }
 
-Frame read_filter_input(const std::string& path, const Frame* first) {
+Frame read_filter_input(const std::string& path, SequenceShape& shape) {
   Frame frame = read_exr(path);
-  if (first) require_same_size(*first, frame);
+  if (shape.first_file.empty()) {
+    shape = {frame.width(), frame.height(), path};
+  } else if (frame.width() != shape.width || frame.height() != shape.height) {
+    throw Error(path + " is " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + " but " +
+                shape.first_file + " is " + std::to_string(shape.width) + "x" + std::to_string(shape.height) +
+                "; every frame of a sequence must have one size");
+  }
   // Every float layer a method reads must be finite; ids are checked by their own readers.
   require_finite(frame, {"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B", "albedo.R",
                          "albedo.G", "albedo.B", "emission.R", "emission.G", "emission.B", "depth.Z", "depth.dX",

@@ -20,8 +20,14 @@ struct SequenceFrame {
 // DIR is missing, holds no frame_NNNN.exr, or lacks a frame of the range.
 std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::string& range);
 
-// Reads one frame and checks it as filter input against the first frame's size (first = nullptr for the
-// first frame itself).
-Frame read_filter_input(const std::string& path, const Frame* first);
+// The size of a sequence and the file that set it: every frame must match the first.
+struct SequenceShape {
+  int width = 0, height = 0;
+  std::string first_file;
+};
+
+// Reads one frame and checks it as filter input: its layers are finite, and its size is `shape`'s (the first
+// frame read sets `shape`). Throws a one-line rtdr::Error naming the file(s).
+Frame read_filter_input(const std::string& path, SequenceShape& shape);
 
 }  // namespace rtdr

@@ -12,6 +12,13 @@ const char* const kRGB[3] = {"R", "G", "B"};
 
 std::string where(const Frame& f) { return f.source.empty() ? std::string("frame") : f.source; }
 
+// A vector layer must have one value per pixel of the frame it goes into.
+void require_pixel_count(const Frame& f, const std::string& layer, size_t count) {
+  if (count != size_t(f.width()) * size_t(f.height()))
+    throw Error("layer '" + layer + "' has " + std::to_string(count) + " values for a " + std::to_string(f.width()) +
+                "x" + std::to_string(f.height()) + " " + where(f));
+}
+
 }  // namespace
 
 FloatPlane& Frame::add_float(const std::string& name, float fill) {
@@ -49,6 +56,7 @@ UIntPlane& Frame::uint_channel(const std::string& name) {
 }
 
 void Frame::set_vec2(const std::string& layer, const std::vector<glm::vec2>& values) {
+  require_pixel_count(*this, layer, values.size());
   FloatPlane& x = add_float(layer + ".X");
   FloatPlane& y = add_float(layer + ".Y");
   for (size_t i = 0; i < values.size(); ++i) {
@@ -66,6 +74,7 @@ std::vector<glm::vec2> Frame::get_vec2(const std::string& layer) const {
 }
 
 void Frame::set_group3(const std::string& layer, const char* const suffixes[3], const std::vector<glm::vec3>& v) {
+  require_pixel_count(*this, layer, v.size());
   for (int c = 0; c < 3; ++c) {
     FloatPlane& p = add_float(layer + "." + suffixes[c]);
     for (size_t i = 0; i < v.size(); ++i) p.data[i] = v[i][c];

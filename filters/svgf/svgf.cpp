@@ -111,8 +111,13 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   emission_ = rgb_plane(in, "emission");
   if (options_.spatial == SpatialFilter::Eaw) position_ = xyz_plane(in, "position");
   // A sequence must keep its size: the histories are per pixel.
-  if (direct_.history.color.width != 0 && direct_.history.color.width != in.width())
-    throw Error(in.source + ": frame size changed within the sequence");
+  const RgbPlane& history = direct_.history.color;
+  if (history.width != 0 && (history.width != in.width() || history.height != in.height()))
+    throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
+                std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
+                std::to_string(history.height) + ")");
+  // The dump receives planes of this frame's size.
+  if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
 
   // The two streams are filtered separately [SVGF17 Sec. 3].
   const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "filter.direct.");

@@ -19,6 +19,7 @@ Command add_render_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_filter_command(CLI::App& app);
 Command add_probe_command(CLI::App& app);
+Command add_eval_command(CLI::App& app);
 
 // Shared option parsing, with one-line rtdr::Error messages naming the flag.
 struct Size {

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1024));
 
   const std::vector<rtdr::Command> commands = {rtdr::add_render_command(app), rtdr::add_filter_command(app),
-                                               rtdr::add_probe_command(app), rtdr::add_bench_command(app)};
+                                               rtdr::add_probe_command(app), rtdr::add_eval_command(app),
+                                               rtdr::add_bench_command(app)};
 
   try {
     app.parse(argc, argv);

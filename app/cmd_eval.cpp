@@ -1,0 +1,121 @@
+// rtdr eval: every method on one scene against reference frames; metrics.csv, the three charts and a
+// side-by-side strip in --out. What is measured on which images: eval/experiment.h.
+#include "app/commands.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "core/png_io.h"
+#include "core/progress.h"
+#include "eval/experiment.h"
+#include "filters/method.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+namespace rtdr {
+namespace {
+
+struct EvalOptions {
+  std::string scene = "pillars";
+  std::string methods = "all";
+  bool sweep = false;
+  std::string frames = "0-23";
+  std::string size = "320x180";
+  int ref_spp = 256;
+  uint32_t seed = 0;
+  std::string cache = "out/cache";
+  std::string out = "out/eval";
+};
+
+std::vector<MethodSpec> method_specs(const EvalOptions& o) {
+  std::vector<std::string> texts;
+  if (o.methods == "all") {
+    texts = method_names();
+  } else {
+    std::stringstream ss(o.methods);
+    for (std::string m; std::getline(ss, m, ',');)
+      if (!m.empty()) texts.push_back(m);
+  }
+  if (o.sweep)
+    for (const std::string& s : standard_sweep()) texts.push_back(s);
+  std::vector<MethodSpec> specs;
+  for (const std::string& t : texts) specs.push_back(parse_method_spec(t));
+  return specs;
+}
+
+// The last frame of every method side by side, left to right in the order printed.
+void write_strip(const std::string& path, const std::vector<std::pair<std::string, RgbPlane>>& images) {
+  const int w = images.front().second.width, h = images.front().second.height, n = int(images.size());
+  std::vector<uint8_t> rgb(size_t(w) * size_t(n) * size_t(h) * 3);
+  for (int k = 0; k < n; ++k)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c)
+          rgb[(size_t(y) * size_t(w * n) + size_t(k * w + x)) * 3 + size_t(c)] =
+              to_byte(srgb_encode(images[size_t(k)].second.at(x, y)[c]));
+  write_png(path, w * n, h, rgb);
+}
+
+void run_eval_command(const EvalOptions& o) {
+  const Size size = parse_size(o.size);
+  const FrameRange frames = parse_frames(o.frames);
+  EvalConfig config;
+  config.scene = o.scene;
+  config.methods = method_specs(o);
+  config.first_frame = frames.first;
+  config.last_frame = frames.last;
+  config.width = size.width;
+  config.height = size.height;
+  config.ref_spp = o.ref_spp;
+  config.seed = o.seed;
+  config.cache_dir = o.cache;
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (!std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is not a directory that can be created");
+
+  EvalResult result;
+  {
+    // The bar counts frames rendered (or read from the cache) and filtered; run_eval knows the total.
+    std::unique_ptr<ProgressBar> bar;
+    result = run_eval(config, [&](int done, int total) {
+      if (!bar) bar = std::make_unique<ProgressBar>("eval " + o.scene, uint64_t(total));
+      bar->advance();
+      static_cast<void>(done);
+    });
+  }
+  const std::string csv = (std::filesystem::path(o.out) / "metrics.csv").string();
+  write_metrics_csv(csv, result.rows);
+  write_strip((std::filesystem::path(o.out) / "strip.png").string(), result.last_frame);
+  const std::string charts = "/usr/bin/python3 '" RTDR_SOURCE_DIR "/eval/charts.py' '" + csv + "' '" + o.out +
+                             "' --title '" + o.scene + "'";
+  if (std::system(charts.c_str()) != 0)
+    throw Error("the charts failed: " + charts + " (needs Debian's python3-matplotlib; run tools/setup.sh)");
+  std::printf("wrote %s, speed_vs_accuracy.png, error_over_frames.png, temporal_error.png and strip.png in %s\n",
+              csv.c_str(), o.out.c_str());
+  std::printf("strip.png, left to right:");
+  for (const auto& [name, image] : result.last_frame) std::printf(" | %s", name.c_str());
+  std::printf("\n");
+}
+
+}  // namespace
+
+Command add_eval_command(CLI::App& app) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* sub = app.add_subcommand("eval", "run methods against reference frames: metrics.csv, charts, a strip");
+  sub->add_option("--scene", o->scene, "shipped scene name or .gltf path")->capture_default_str();
+  sub->add_option("--methods", o->methods, "comma-separated method specs (name[:param=value...]) or all")
+      ->capture_default_str();
+  sub->add_flag("--sweep", o->sweep, "add the parameter sweeps: a-trous levels, alpha, the 3x3 kernel");
+  sub->add_option("--frames", o->frames, "inclusive frame range A-B")->capture_default_str();
+  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--ref-spp", o->ref_spp, "samples per pixel of the reference frames")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  sub->add_option("--seed", o->seed, "seed of the 1-spp inputs (references use another)")->capture_default_str();
+  sub->add_option("--cache", o->cache, "where rendered frames are cached (\"\" for none)")->capture_default_str();
+  sub->add_option("--out", o->out, "output directory")->capture_default_str();
+  return {sub, [o] { run_eval_command(*o); }};
+}
+
+}  // namespace rtdr

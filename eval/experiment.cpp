@@ -1,0 +1,145 @@
+// The evaluation harness. What is measured, on which images, is described in experiment.h.
+#include "eval/experiment.h"
+
+#include "core/atomic_file.h"
+#include "core/color.h"
+#include "core/error.h"
+#include "eval/frame_cache.h"
+#include "eval/metrics.h"
+#include "filters/method.h"
+#include "filters/svgf/tonemap.h"
+#include "scenes/gltf_loader.h"
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace rtdr {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string part; std::getline(ss, part, sep);) parts.push_back(part);
+  return parts;
+}
+
+// The colour a frame shows: emission + albedo (direct + indirect), the path tracer's split undone.
+RgbPlane frame_colour(const Frame& f) {
+  const RgbPlane direct = rgb_plane(f, "direct"), indirect = rgb_plane(f, "indirect");
+  const RgbPlane albedo = rgb_plane(f, "albedo"), emission = rgb_plane(f, "emission");
+  RgbPlane c(f.width(), f.height());
+  for (size_t i = 0; i < c.data.size(); ++i)
+    c.data[i] = emission.data[i] + demodulation_factor(albedo.data[i]) * (direct.data[i] + indirect.data[i]);
+  return c;
+}
+
+// One method over the whole sequence: a row of metrics per frame.
+void evaluate_method(const MethodSpec& spec, const std::vector<Frame>& inputs, const std::vector<RgbPlane>& ref_colour,
+                     const std::vector<RgbPlane>& ref_display, const EvalConfig& c, EvalResult& result,
+                     const std::function<void()>& tick) {
+  const std::unique_ptr<Method> method = make_method(spec.name, spec.svgf);
+  RgbPlane previous_display;
+  for (size_t k = 0; k < inputs.size(); ++k) {
+    const Frame out = method->filter(inputs[k]);
+    const RgbPlane colour = rgb_plane(out, "color"), display = rgb_plane(out, "display");
+    MetricsRow row;
+    row.method = spec.name;
+    row.params = spec.params;
+    row.frame = c.first_frame + int(k);
+    row.rmse = rmse(colour, ref_colour[k]);
+    row.relmse = relmse(colour, ref_colour[k]);
+    row.ssim = ssim(display, ref_display[k]);
+    row.flip = flip(display, ref_display[k]).mean;
+    row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
+    for (const auto& [pass, ms] : method->pass_times()) row.ms[pass] = ms, row.ms_total += ms;
+    result.rows.push_back(row);
+    previous_display = display;
+    if (k + 1 == inputs.size()) result.last_frame.push_back({spec.text, display});
+    tick();
+  }
+}
+
+}  // namespace
+
+MethodSpec parse_method_spec(const std::string& text) {
+  const std::vector<std::string> parts = split(text, ':');
+  if (parts.empty() || parts[0].empty()) throw Error("method spec '" + text + "' is empty");
+  MethodSpec spec{text, parts[0], "", {}};
+  make_method(spec.name);  // throws for an unknown name, listing the known ones
+  for (size_t i = 1; i < parts.size(); ++i) {
+    const size_t eq = parts[i].find('=');
+    double value = 0.0;
+    if (eq == std::string::npos || std::sscanf(parts[i].c_str() + eq + 1, "%lf", &value) != 1 ||
+        !set_param(spec.svgf, parts[i].substr(0, eq), value))
+      throw Error("method spec '" + text + "': '" + parts[i] + "' is not parameter=value of svgf_params.h");
+    spec.params += (spec.params.empty() ? "" : ":") + parts[i];
+  }
+  validate(spec.svgf);
+  return spec;
+}
+
+std::vector<std::string> standard_sweep() {
+  std::vector<std::string> specs;
+  for (int levels = 1; levels <= 4; ++levels) specs.push_back("svgf:atrous_levels=" + std::to_string(levels));
+  for (const char* alpha : {"0.05", "0.1", "0.5"}) specs.push_back(std::string("svgf:alpha=") + alpha + ":alpha_moments=" + alpha);
+  specs.push_back("svgf:kernel_size=3");
+  return specs;  // plus "svgf" itself: 5 levels, alpha 0.2, the 5x5 kernel
+}
+
+EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+  const Scene scene = load_scene(c.scene);
+  FrameCache cache(c.cache_dir, scene);
+  const int frames = c.last_frame - c.first_frame + 1;
+  const int total = 2 * frames + int(c.methods.size()) * frames;
+  int done = 0;
+  auto tick = [&] {
+    if (progress) progress(++done, total);
+  };
+
+  // Inputs (1 spp, the seed's noise) and references (ref_spp samples of the same estimator, another seed).
+  std::vector<Frame> inputs;
+  std::vector<RgbPlane> ref_colour, ref_display;
+  RenderSettings input_settings, ref_settings;
+  input_settings.seed = c.seed;
+  ref_settings.spp = c.ref_spp;
+  ref_settings.seed = c.seed + 1000003u;
+  const TonemapParams tonemap_params;
+  for (int f = c.first_frame; f <= c.last_frame; ++f) {
+    inputs.push_back(cache.get(f, c.width, c.height, input_settings));
+    tick();
+    ref_colour.push_back(frame_colour(cache.get(f, c.width, c.height, ref_settings)));
+    ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));
+    tick();
+  }
+
+  EvalResult result;
+  result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.back()), tonemap_params)});
+  for (const MethodSpec& spec : c.methods) evaluate_method(spec, inputs, ref_colour, ref_display, c, result, tick);
+  result.last_frame.push_back({"reference " + std::to_string(c.ref_spp) + " spp", ref_display.back()});
+  return result;
+}
+
+void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows) {
+  std::set<std::string> passes;
+  for (const MetricsRow& r : rows)
+    for (const auto& [pass, ms] : r.ms) passes.insert(pass);
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,ms_total";
+  for (const std::string& p : passes) csv << ",ms_" << p;
+  csv << '\n';
+  for (const MetricsRow& r : rows) {
+    csv << r.method << ',' << r.params << ',' << r.frame << ',' << r.rmse << ',' << r.relmse << ',' << r.ssim << ','
+        << r.flip << ',' << r.temporal_error << ',' << r.ms_total;
+    for (const std::string& p : passes) {
+      csv << ',';
+      if (r.ms.count(p)) csv << r.ms.at(p);
+    }
+    csv << '\n';
+  }
+  write_text_file(path, csv.str());
+}
+
+}  // namespace rtdr

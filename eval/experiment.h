@@ -1,0 +1,70 @@
+// The evaluation harness: every method, now and later, is judged by exactly this code.
+//
+// run_eval renders (or takes from the cache) the 1-spp inputs and the reference frames of a scene, runs each
+// method over the sequence in order, and measures each filtered frame against the reference:
+//   rmse, relmse      on linear HDR radiance (the method's `color` against the reference's colour)
+//   ssim, flip        on tone-mapped display values in [0, 1] (the method's `display`, TAA included,
+//                     against the reference tone mapped with the same operator, no TAA)
+//   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
+//   ms_total, ms_<pass>  wall time of the method's passes on this frame
+// A method is named by a spec "name[:param=value[:param=value...]]", e.g. "svgf:atrous_levels=3", where the
+// parameters are rows of filters/svgf/svgf_params.h; adding a method is a line in filters/method.cpp.
+#pragma once
+
+#include "filters/image.h"
+#include "filters/svgf/svgf_params.h"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct MethodSpec {
+  std::string text;    // as given, e.g. "svgf:alpha=0.1"
+  std::string name;    // "svgf"
+  std::string params;  // "alpha=0.1" ("" for the defaults)
+  SvgfParams svgf;
+};
+// Throws rtdr::Error for an unknown method or parameter, or a value outside its range.
+MethodSpec parse_method_spec(const std::string& text);
+// The parameter sweeps of the speed-versus-accuracy chart: a-trous levels 1 to 5, alpha in {0.05, 0.1,
+// 0.2, 0.5}, and the 3x3 kernel (the 5x5 is the default).
+std::vector<std::string> standard_sweep();
+
+struct EvalConfig {
+  std::string scene;
+  std::vector<MethodSpec> methods;
+  int first_frame = 0, last_frame = 0;  // inclusive
+  int width = 320, height = 180;
+  int ref_spp = 256;
+  uint32_t seed = 0;
+  std::string cache_dir = "out/cache";  // "" disables the cache
+};
+
+struct MetricsRow {
+  std::string method, params;
+  int frame = 0;
+  double rmse = 0, relmse = 0, ssim = 0, flip = 0;
+  double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
+  double ms_total = 0;
+  std::map<std::string, double> ms;  // per pass
+};
+
+// Called with (units done, units total) as frames are rendered and filtered.
+using EvalProgress = std::function<void(int, int)>;
+
+struct EvalResult {
+  std::vector<MetricsRow> rows;
+  // The last frame side by side, for a strip image: the 1-spp input, each method's display, the reference.
+  std::vector<std::pair<std::string, RgbPlane>> last_frame;
+};
+
+EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
+
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, ms_total, then one ms_<pass> column per pass
+// of any method (empty where a method has no such pass). Written atomically.
+void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
+
+}  // namespace rtdr

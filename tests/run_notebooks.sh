@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Executes the classroom notebooks headless on a tiny sequence, as a person would run them (ctest label
+# `notebooks`). Usage: tests/run_notebooks.sh path/to/rtdr path/to/source. Fails when any cell raises.
+set -euo pipefail
+rtdr=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$rtdr" render --scene pillars --frames 0-5 --size 64x36 --out "$work/in" > /dev/null
+"$rtdr" filter --method svgf --in "$work/in" --out "$work/svgf" --dump-passes > /dev/null
+"$rtdr" eval --scene pillars --methods svgf,accum,eaw,none --sweep --frames 0-3 --size 64x36 --ref-spp 8 \
+  --cache "" --out "$work/eval" > /dev/null 2>&1
+
+export RTDR_WALKTHROUGH_IN="$work/in" RTDR_WALKTHROUGH_DUMP="$work/svgf" RTDR_EXE="$rtdr"
+export RTDR_METRICS="$work/eval/metrics.csv" MPLBACKEND=Agg PYDEVD_DISABLE_FILE_VALIDATION=1
+for notebook in svgf_walkthrough speed_vs_accuracy; do
+  # Debian's nbconvert and its python3 kernel (/usr/bin/python3, with numpy, matplotlib and OpenImageIO).
+  /usr/bin/jupyter-nbconvert --to notebook --execute "$src/notebooks/$notebook.ipynb" --output-dir "$work" \
+    --ExecutePreprocessor.kernel_name=python3 --ExecutePreprocessor.timeout=120 --log-level=WARN
+  echo "executed $notebook.ipynb"
+done

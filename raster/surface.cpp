@@ -59,7 +59,8 @@ SurfacePoint SurfaceTable::at(const SurfaceSample& s, const glm::vec3& viewer) c
   }
   p.roughness = m.roughness;
   p.metallic = m.metallic;
-  p.emission = m.emission;
+  // Emitters are one-sided (trace/lights.h): only the front face, seen from the viewer, emits.
+  p.emission = p.front_face ? m.emission : glm::vec3(0.0f);
   p.material = m.material;
   return p;
 }

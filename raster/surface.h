@@ -23,7 +23,7 @@ struct SurfacePoint {
   glm::vec3 albedo{0.0f};      // base colour times texture, linear rgb
   float roughness = 1.0f;
   float metallic = 0.0f;
-  glm::vec3 emission{0.0f};    // emissive * strength(t); emitted from the front face only (trace/lights.h)
+  glm::vec3 emission{0.0f};    // emissive * strength(t) when the viewer sees the front face, else 0 (trace/lights.h)
   uint32_t mesh = kInvalidId;
   uint32_t material = kInvalidId;  // kInvalidId for glTF's default material
 };

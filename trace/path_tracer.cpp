@@ -89,7 +89,7 @@ LightConnection connect_to_light(const TraceContext& c, const SurfacePoint& x, c
 // against light sampling, which could have chosen the same point.
 glm::vec3 emission_hit(const TraceContext& c, const SurfacePoint& x, const SurfacePoint& y, const Hit& hit,
                        float pdf_bsdf) {
-  if (!y.front_face || luminance(y.emission) <= 0.0f) return glm::vec3(0.0f);
+  if (luminance(y.emission) <= 0.0f) return glm::vec3(0.0f);  // not an emitter, or its back (raster/surface.h)
   const glm::vec3 d = y.position - x.position;
   const float cos_light = std::abs(glm::dot(y.geo_normal, glm::normalize(d)));
   const float pdf_light = cos_light > 0.0f ? c.lights.pdf_area(hit.instance, hit.triangle) * glm::dot(d, d) / cos_light : 0.0f;

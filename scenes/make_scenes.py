@@ -3,11 +3,13 @@
 
     /usr/bin/python3 scenes/make_scenes.py
 
-Writes scenes/cornell.gltf, scenes/pillars.gltf and tests/data/*.gltf (see make_test_fixtures.py).
+Writes the shipped scenes scenes/<name>.gltf (SCENES below: cornell, pillars and six failure cases) and the
+loader's test fixtures tests/data/*.gltf (see make_test_fixtures.py).
 The output is deterministic: running it again must leave `git status` clean.
 
 Conventions (scenes/README.md): metres, +Y up, the camera looks down its node's -Z axis, every mesh is
-a triangle list with counter-clockwise front faces and per-vertex normals, metallic 0 everywhere.
+a triangle list with counter-clockwise front faces and per-vertex normals, metallic 0 everywhere except the
+glossy scene's floor. The geometry helpers are in scene_geometry.py.
 """
 
 import math
@@ -17,83 +19,11 @@ import sys
 sys.dont_write_bytecode = True  # keep scenes/ free of __pycache__
 import gltf_writer  # noqa: E402  (the script's own folder is on sys.path)
 import make_test_fixtures  # noqa: E402
+from scene_geometry import (WALLS, add_geometry, add_moving_camera, add_room, axis_angle, box,  # noqa: E402
+                            look_at, quad)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
-
-
-# --- Geometry helpers ------------------------------------------------------------------------------------
-
-def add(a, b):
-    return tuple(x + y for x, y in zip(a, b))
-
-
-def scaled(a, s):
-    return tuple(x * s for x in a)
-
-
-def negated(a):
-    return scaled(a, -1.0)
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def normalized(a):
-    return scaled(a, 1.0 / math.sqrt(sum(x * x for x in a)))
-
-
-def quad(center, half_u, half_v):
-    """A rectangle center +- half_u +- half_v facing cross(half_u, half_v), counter-clockwise from the front.
-
-    Returns (positions, normals, uvs, indices); u runs along half_u, v along -half_v (glTF's UV origin is
-    the top-left corner).
-    """
-    normal = normalized(cross(half_u, half_v))
-    corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
-    positions = [add(center, add(scaled(half_u, su), scaled(half_v, sv))) for su, sv in corners]
-    uvs = [((su + 1) / 2, (1 - sv) / 2) for su, sv in corners]
-    return positions, [normal] * 4, uvs, [0, 1, 2, 0, 2, 3]
-
-
-def merge(parts):
-    """Concatenates (positions, normals, uvs, indices) tuples into one, offsetting the indices."""
-    positions, normals, uvs, indices = [], [], [], []
-    for p, n, t, i in parts:
-        indices += [len(positions) + k for k in i]
-        positions += p
-        normals += n
-        uvs += t
-    return positions, normals, uvs, indices
-
-
-def box(lo, hi):
-    """An axis-aligned box from corner lo to corner hi: six outward-facing quads, 24 vertices."""
-    c = scaled(add(lo, hi), 0.5)
-    h = scaled(add(hi, negated(lo)), 0.5)  # half extents
-    x, y, z = (h[0], 0, 0), (0, h[1], 0), (0, 0, h[2])
-    return merge([
-        quad(add(c, x), negated(z), y),           # +X face: cross(-z, y) = +x
-        quad(add(c, negated(x)), z, y),           # -X face: cross(z, y) = -x
-        quad(add(c, y), x, negated(z)),           # +Y face (top): cross(x, -z) = +y
-        quad(add(c, negated(y)), x, z),           # -Y face (bottom): cross(x, z) = -y
-        quad(add(c, z), x, y),                    # +Z face: cross(x, y) = +z
-        quad(add(c, negated(z)), negated(x), y),  # -Z face: cross(-x, y) = -z
-    ])
-
-
-def axis_angle(axis, degrees):
-    """The unit quaternion (x, y, z, w) of a rotation by `degrees` about `axis` (right-handed)."""
-    half = math.radians(degrees) / 2
-    a = normalized(axis)
-    return (a[0] * math.sin(half), a[1] * math.sin(half), a[2] * math.sin(half), math.cos(half))
-
-
-def add_geometry(gltf, name, geometry, material):
-    """One mesh with one primitive from a (positions, normals, uvs, indices) tuple."""
-    positions, normals, uvs, indices = geometry
-    return gltf.add_mesh(name, [gltf.primitive(positions, normals, uvs, indices, material)])
 
 
 # --- Cornell box -----------------------------------------------------------------------------------------
@@ -211,9 +141,335 @@ def pillars():
     return gltf
 
 
+# --- The failure cases ----------------------------------------------------------------------------------
+# Six scenes, each modelling only the situation in which a temporal denoiser fails that a paper figure
+# shows, with a few boxes and quads. Each is 2-3 s of animation at 30 fps (frame f at t = f / 30 s); the
+# event times below are repeated in scenes/README.md and checked by tests/scenes_failure_cases_test.cpp.
+# Surfaces are diffuse (metallic 0) except the glossy scene's floor; every light is a one-sided quad or
+# box (trace/lights.h) turned towards what the camera sees.
+
+STONE = (0.5, 0.47, 0.43, 1.0)      # a mid-grey stone for the dungeon and the corridor
+SANDSTONE = (0.68, 0.6, 0.48, 1.0)  # the corridor's warm walls (a Sponza-like tone)
+WHITE = (0.75, 0.75, 0.75, 1.0)
+
+
+# --- Flicker ---------------------------------------------------------------------------------------------
+# The A-SVGF DUNGEON scene [ASVGF18 Sec. 5.1, Fig. 1 and Fig. 3]: "multiple static area light sources ...
+# one rapidly moving red area light and a flickering, blue area light", seen from a moving camera. A closed
+# stone room x in [-3, 3], y in [0, 3], z in [-5, 3]; two floor-to-ceiling pillars at x = -1.3, 1.3,
+# z = -2.5 and a crate; two warm static lights on the side walls; a blue panel on the back wall that
+# switches on and off (STEP keys, below); a small red emissive cube that sweeps across the room at
+# y = 1, z = -1 (6.4 m/s, turning at x = +-2.4 every 0.75 s), throwing fast shadows of the pillars and
+# the crate onto the back wall. The camera dollies 3.4 m across the front of the room in 3 s, turning to
+# keep the back of the room in view.
+# The blue light is on from t = 0, off at 0.5 s, ON AGAIN AT t = 1.0 s (frame 30: the documented
+# off -> on switch; frame 29 is the last dark frame), off at 1.375 s, on at 1.75 s, off at 2.125 s and
+# on at 2.5 s. The key times are binary fractions, exact in float32, so each switch lands on the first
+# frame at or after its key: frames 15, 30, 42, 53, 64, 75.
+
+FLICKER_BLUE_TIMES = [0.0, 0.5, 1.0, 1.375, 1.75, 2.125, 2.5]
+FLICKER_BLUE_STRENGTH = 40.0
+FLICKER_RED_TIMES = [0.0, 0.75, 1.5, 2.25, 3.0]
+FLICKER_RED_X = [-2.4, 2.4, -2.4, 2.4, -2.4]
+
+
+def flicker():
+    gltf = gltf_writer.GltfBuilder("flicker")
+    stone = gltf.add_material("stone", STONE)
+    wood = gltf.add_material("wood", (0.45, 0.3, 0.18, 1.0))
+    warm = gltf.add_material("warm_light", STONE, emissive=(1.0, 0.62, 0.3), emissive_strength=40.0)
+    values = [FLICKER_BLUE_STRENGTH * (1 - k % 2) for k in range(len(FLICKER_BLUE_TIMES))]  # on, off, on, ...
+    track = {"times": FLICKER_BLUE_TIMES, "values": values, "interpolation": "STEP"}
+    blue = gltf.add_material("blue_light", STONE, emissive=(0.1, 0.3, 1.0), emissive_strength=FLICKER_BLUE_STRENGTH,
+                             extras={"rtdr_emissive_strength": track})
+    red = gltf.add_material("red_light", (0.8, 0.1, 0.05, 1.0), emissive=(1.0, 0.08, 0.04), emissive_strength=40.0)
+
+    add_room(gltf, "room", (-3, 0, -5), (3, 3, 3), {wall: stone for wall in WALLS})
+    pillar = add_geometry(gltf, "pillar", box((-0.25, 0, -0.25), (0.25, 3, 0.25)), stone)
+    for name, x in (("pillar_left", -1.3), ("pillar_right", 1.3)):
+        gltf.add_node(name, mesh=pillar, translation=(x, 0, -2.5))
+    crate = add_geometry(gltf, "crate", box((-0.4, 0, -0.4), (0.4, 0.8, 0.4)), wood)
+    gltf.add_node("crate", mesh=crate, translation=(0.3, 0, -3.9), rotation=axis_angle((0, 1, 0), 20))
+
+    # The static lights: 0.5 x 0.7 m panels 2 cm off the side walls (no depth ties with the walls), facing in.
+    left_panel = quad((-2.98, 1.9, -1.0), (0, 0.35, 0), (0, 0, 0.25))   # cross(y, z) = +X
+    right_panel = quad((2.98, 1.9, -3.0), (0, 0, 0.25), (0, 0.35, 0))   # cross(z, y) = -X
+    gltf.add_node("warm_light_left", mesh=add_geometry(gltf, "warm_light_left", left_panel, warm))
+    gltf.add_node("warm_light_right", mesh=add_geometry(gltf, "warm_light_right", right_panel, warm))
+    # The blue panel: 1.2 x 0.5 m, 2 cm in front of the back wall, facing the room (+Z).
+    blue_panel = quad((0, 2.0, -4.98), (0.6, 0, 0), (0, 0.25, 0))
+    gltf.add_node("blue_light", mesh=add_geometry(gltf, "blue_light", blue_panel, blue))
+    # The red light: a 0.24 m cube, emitting from all six faces, swept along x by its node.
+    cube = add_geometry(gltf, "red_light", box((-0.12, -0.12, -0.12), (0.12, 0.12, 0.12)), red)
+    keys = [(x, 1.0, -1.0) for x in FLICKER_RED_X]
+    node = gltf.add_node("red_light", mesh=cube, translation=keys[0])
+    gltf.add_animation("red_light_sweep", [(node, "translation", FLICKER_RED_TIMES, keys, "LINEAR")])
+
+    # The camera slides from (-1.6, 1.7, 2.4) to (1.6, 1.5, 1.4), keys every 0.5 s, looking at the back wall.
+    times = [0.5 * k for k in range(7)]
+    eyes = [(-1.6 + 3.2 * t / 3, 1.7 - 0.2 * t / 3, 2.4 - t / 3) for t in times]
+    add_moving_camera(gltf, 55, times, eyes, (0, 1.1, -3))
+    return gltf
+
+
+# --- Falling light ---------------------------------------------------------------------------------------
+# The A-SVGF SPONZA scene [ASVGF18 Sec. 5.1, Fig. 3]: "The camera flies through the corridor while an area
+# light drops to the ground quickly". A closed corridor x in [-2, 2], y in [0, 4], z in [-12, 3] with warm
+# walls and two rows of four 0.4 m square columns (x = +-1.3, z = -1, -3.5, -6, -8.5). Its only light is a
+# 0.6 x 0.6 m quad facing down at x = 0, z = -5: it hangs at y = 3 m, DROPS TO y = 0.5 m BETWEEN t = 1.0 s
+# AND t = 1.5 s (frames 30 to 45, 5 m/s) and stays there, so the lit area shrinks from the whole corridor
+# to a bright pool around z = -5 and the ceiling and far walls fall dark. The camera flies 4 m down the
+# corridor in 3 s at eye height.
+
+FALLING_LIGHT_TIMES = [0.0, 1.0, 1.5, 3.0]
+FALLING_LIGHT_Y = [3.0, 3.0, 0.5, 0.5]
+FALLING_LIGHT_STRENGTH = 120.0
+
+
+def falling_light():
+    gltf = gltf_writer.GltfBuilder("falling-light")
+    walls = gltf.add_material("sandstone", SANDSTONE)
+    floor = gltf.add_material("floor", STONE)
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 0.95, 0.85), emissive_strength=FALLING_LIGHT_STRENGTH)
+
+    materials = {wall: walls for wall in WALLS}
+    materials["floor"] = floor
+    add_room(gltf, "corridor", (-2, 0, -12), (2, 4, 3), materials)
+    column = add_geometry(gltf, "column", box((-0.2, 0, -0.2), (0.2, 4, 0.2)), walls)
+    for i, z in enumerate((-1.0, -3.5, -6.0, -8.5)):
+        for side, x in (("left", -1.3), ("right", 1.3)):
+            gltf.add_node("column_%s_%d" % (side, i), mesh=column, translation=(x, 0, z))
+
+    # The lamp: the emitting quad at its node's origin, facing down, under an opaque 8 cm housing 1 cm above
+    # it, so that seen from above (after the drop) it is a dark box and not the back of an emitter.
+    keys = [(0.0, y, -5.0) for y in FALLING_LIGHT_Y]
+    lamp = gltf.add_node("lamp", translation=keys[0])
+    panel = quad((0, 0, 0), (0.3, 0, 0), (0, 0, 0.3))  # cross(x, z) = -Y: facing down
+    gltf.add_node("light", parent=lamp, mesh=add_geometry(gltf, "light", panel, light))
+    housing = box((-0.32, 0.01, -0.32), (0.32, 0.09, 0.32))
+    gltf.add_node("lamp_housing", parent=lamp, mesh=add_geometry(gltf, "lamp_housing", housing, floor))
+    gltf.add_animation("lamp_drop", [(lamp, "translation", FALLING_LIGHT_TIMES, keys, "LINEAR")])
+
+    times = [0.5 * k for k in range(7)]
+    eyes = [(0.3 - 0.2 * t, 1.6, 2.5 - 4 * t / 3) for t in times]
+    add_moving_camera(gltf, 60, times, eyes, (0, 1.2, -12))
+    return gltf
+
+
+# --- Glossy ----------------------------------------------------------------------------------------------
+# The A-SVGF GLOSSYSPONZA scene [ASVGF18 Sec. 5.1, Fig. 3] and the TRMV sun temple [TRMV21 Fig. 11]: glossy
+# reflections under a fast camera move, where the reflected image moves unlike the surface it is seen in.
+# A closed room x in [-5, 5], y in [0, 4], z in [-4, 7] with white walls and a brushed-metal floor
+# (metallic 1, roughness 0.15, so GGX alpha = 0.0225: sharp but blurred reflections); four coloured boxes
+# (red, green, blue, yellow) stand on it; a ceiling panel above the camera's side lights their fronts, and
+# a strip light on the back wall gives a highlight in the floor. The camera orbits the boxes at 5.5 m
+# radius, 1.8 m high, from -40 to +40 degrees in 2 s (about 3.8 m/s), looking at (0, 0.6, -0.5).
+
+GLOSSY_FLOOR_ROUGHNESS = 0.15
+GLOSSY_FLOOR_METALLIC = 1.0
+GLOSSY_DURATION = 2.0
+
+
+def glossy():
+    gltf = gltf_writer.GltfBuilder("glossy")
+    white = gltf.add_material("white", WHITE)
+    metal = gltf.add_material("floor_metal", (0.85, 0.85, 0.85, 1.0), roughness=GLOSSY_FLOOR_ROUGHNESS,
+                              metallic=GLOSSY_FLOOR_METALLIC)
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 1.0, 1.0), emissive_strength=25.0)
+
+    materials = {wall: white for wall in WALLS}
+    materials["floor"] = metal
+    add_room(gltf, "room", (-5, 0, -4), (5, 4, 7), materials)
+    # (colour, size x, y, z, centre x, z, turn about Y in degrees)
+    boxes = [
+        ("red", (0.8, 0.1, 0.08), (0.6, 1.2, 0.6), -1.3, -0.6, 15),
+        ("green", (0.12, 0.6, 0.15), (0.8, 0.8, 0.8), 0.2, 0.7, -20),
+        ("blue", (0.1, 0.2, 0.8), (0.5, 1.8, 0.5), 1.4, -1.3, 0),
+        ("yellow", (0.85, 0.7, 0.1), (0.5, 0.5, 0.5), -0.1, -2.0, 35),
+    ]
+    for name, colour, (sx, sy, sz), x, z, turn in boxes:
+        material = gltf.add_material(name, colour + (1.0,))
+        mesh = add_geometry(gltf, name + "_box", box((-sx / 2, 0, -sz / 2), (sx / 2, sy, sz / 2)), material)
+        gltf.add_node(name + "_box", mesh=mesh, translation=(x, 0, z), rotation=axis_angle((0, 1, 0), turn))
+
+    ceiling_panel = quad((0, 3.98, 2.5), (0.75, 0, 0), (0, 0, 0.5))  # cross(x, z) = -Y
+    strip = quad((0, 2.8, -3.98), (1.25, 0, 0), (0, 0.2, 0))          # cross(x, y) = +Z
+    gltf.add_node("ceiling_light", mesh=add_geometry(gltf, "ceiling_light", ceiling_panel, light))
+    gltf.add_node("strip_light", mesh=add_geometry(gltf, "strip_light", strip, light))
+
+    target = (0.0, 0.6, -0.5)
+    times = [0.25 * k for k in range(9)]
+    angles = [math.radians(-40 + 80 * t / GLOSSY_DURATION) for t in times]
+    eyes = [(target[0] + 5.5 * math.sin(a), 1.8, target[2] + 5.5 * math.cos(a)) for a in angles]
+    add_moving_camera(gltf, 50, times, eyes, target)
+    return gltf
+
+
+# --- Fence -----------------------------------------------------------------------------------------------
+# The TRMV fence scene [TRMV21 Sec. 6, Fig. 8]: "a rapidly moving fence in front and an area light behind
+# it". A floor and a back wall (z = -6); a 14.4 m fence of 48 slats (0.08 x 1.4 x 0.04 m, 0.3 m apart, all
+# sharing one mesh) on two rails, under one parent node at z = 0 that moves along x at 3 m/s, reversing at
+# t = 1 s and t = 2 s (x = -1.5, 1.5, -1.5, 1.5 at t = 0, 1, 2, 3 s). A narrow 0.4 x 1 m light behind and
+# above the fence (y = 3.5, z = -3), tilted 45 degrees towards the camera, casts the slats' shadows onto
+# the floor in front of them (from z = 0 to z = 2, where the line from the light over a slat's top lands).
+# The camera is static at (0, 1.6, 5), pitched 12 degrees down, yfov 45 degrees: the fence is about 5.1 m
+# deep in the view, where at 640x360 a metre is 360 / (2 * 5.1 tan 22.5) = 85 px, so it moves about 8.5 px
+# per frame (0.1 m), its shadows on the floor as much or more. The light stays above the view.
+
+FENCE_SLATS = 48
+FENCE_SPACING = 0.3
+FENCE_SLAT = (0.08, 1.4, 0.04)
+FENCE_TIMES = [0.0, 1.0, 2.0, 3.0]
+FENCE_X = [-1.5, 1.5, -1.5, 1.5]
+
+
+def fence():
+    gltf = gltf_writer.GltfBuilder("fence")
+    grey = gltf.add_material("grey", (0.7, 0.7, 0.7, 1.0))
+    wood = gltf.add_material("wood", (0.55, 0.4, 0.25, 1.0))
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 1.0, 1.0), emissive_strength=200.0)
+
+    floor = quad((0, 0, 1), (10, 0, 0), (0, 0, -7))  # x in [-10, 10], z in [-6, 8], normal +Y
+    gltf.add_node("floor", mesh=add_geometry(gltf, "floor", floor, grey))
+    wall = quad((0, 2.5, -6), (10, 0, 0), (0, 2.5, 0))  # normal +Z
+    gltf.add_node("back_wall", mesh=add_geometry(gltf, "back_wall", wall, grey))
+
+    parent = gltf.add_node("fence", translation=(FENCE_X[0], 0, 0))
+    sx, sy, sz = FENCE_SLAT
+    slat = add_geometry(gltf, "slat", box((-sx / 2, 0, -sz / 2), (sx / 2, sy, sz / 2)), wood)
+    first_x = -FENCE_SPACING * (FENCE_SLATS - 1) / 2
+    for i in range(FENCE_SLATS):
+        gltf.add_node("slat_%02d" % i, parent=parent, mesh=slat, translation=(first_x + i * FENCE_SPACING, 0, 0))
+    # Two rails just behind the slats (z in [-0.06, -0.02]), so no face of a rail meets a face of a slat.
+    half_length = -first_x + 0.2
+    rail = add_geometry(gltf, "rail", box((-half_length, -0.04, -0.06), (half_length, 0.04, -0.02)), wood)
+    for name, y in (("rail_low", 0.35), ("rail_high", 1.15)):
+        gltf.add_node(name, parent=parent, mesh=rail, translation=(0, y, 0))
+    keys = [(x, 0.0, 0.0) for x in FENCE_X]
+    gltf.add_animation("fence_move", [(parent, "translation", FENCE_TIMES, keys, "LINEAR")])
+
+    panel = quad((0, 0, 0), (0.2, 0, 0), (0, 0.5, 0))  # faces +Z; turned 45 degrees about +X below
+    gltf.add_node("light", mesh=add_geometry(gltf, "light", panel, light), translation=(0, 3.5, -3),
+                  rotation=axis_angle((1, 0, 0), 45))
+
+    camera = gltf.add_camera("camera", yfov=math.radians(45), znear=0.05)
+    gltf.add_node("camera", camera=camera, translation=(0, 1.6, 5), rotation=axis_angle((1, 0, 0), -12))
+    return gltf
+
+
+# --- Occlusion -------------------------------------------------------------------------------------------
+# The TRMV PICA scene [TRMV21 Sec. 6, Fig. 1 right and Fig. 12]: objects moving in front of a detailed,
+# indirectly lit background, so every frame uncovers background whose history the objects hid (TRMV shows
+# the indirect light alone). A closed room x in [-4, 4], y in [0, 5], z in [-3, 6]. The background is the
+# back wall below y = 2.5, with a checker base colour texture (a 32 x 32 PNG of 4 x 4 cells of 8 texels,
+# repeated so that a cell is 0.5 m); above it the wall is white. The only light is a cove: a 7 x 0.3 m
+# strip at y = 2.7, 1 m in front of the back wall, facing straight up, hidden from the camera by a
+# valance. It lights the ceiling and the walls above y = 2.7 directly; the textured wall, the floor and
+# the objects are all below its plane and get bounced light only, mostly from the ceiling it washes. The
+# camera sees the directly lit white wall above the valance along the top of the image (10% of it). An
+# orange box (0.8 x 1.6 x 0.5 m) slides left to right 1.2 m in front of the back wall (x = -3 -> 3 in
+# 3 s, 2 m/s) and a blue cube (0.6 m) right to left closer to the camera (x = 2.5 -> -2.5, 1.67 m/s).
+# The camera is static, pitched 8 degrees down.
+
+OCCLUSION_CELL_TEXELS = 8
+OCCLUSION_CELLS = 4
+OCCLUSION_CELL_SIZE = 0.5  # metres
+OCCLUSION_WALL_TOP = 2.5   # the textured part of the back wall, y in [0, 2.5]
+OCCLUSION_HEIGHT = 5.0
+
+
+def checker_png():
+    """A 32 x 32 checker of cream and brick-red 8 x 8 texel cells, sRGB-encoded."""
+    cream, brick = (225, 212, 180, 255), (150, 62, 48, 255)
+    n = OCCLUSION_CELL_TEXELS * OCCLUSION_CELLS
+    rows = [[cream if (x // OCCLUSION_CELL_TEXELS + y // OCCLUSION_CELL_TEXELS) % 2 == 0 else brick
+             for x in range(n)] for y in range(n)]
+    return gltf_writer.png_rgba8(n, n, rows)
+
+
+def occlusion():
+    gltf = gltf_writer.GltfBuilder("occlusion")
+    white = gltf.add_material("white", WHITE)
+    floor = gltf.add_material("floor", (0.6, 0.55, 0.5, 1.0))
+    texture = gltf.add_png_texture(checker_png(), "checker")
+    checker = gltf.add_material("checker", (1.0, 1.0, 1.0, 1.0), texture=texture)
+    orange = gltf.add_material("orange", (0.8, 0.42, 0.15, 1.0))
+    blue = gltf.add_material("blue", (0.15, 0.3, 0.7, 1.0))
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 1.0, 1.0), emissive_strength=150.0)
+
+    walls = {wall: white for wall in WALLS if wall != "back"}
+    walls["floor"] = floor
+    add_room(gltf, "room", (-4, 0, -3), (4, OCCLUSION_HEIGHT, 6), walls)
+    # The back wall in two quads facing +Z: the textured background below y = 2.5, white above it.
+    top, height = OCCLUSION_WALL_TOP, OCCLUSION_HEIGHT
+    positions, normals, uvs, indices = quad((0, top / 2, -3), (4, 0, 0), (0, top / 2, 0))
+    repeat = OCCLUSION_CELLS * OCCLUSION_CELL_SIZE  # one texture repeat covers 2 m
+    uvs = [(u * 8 / repeat, v * top / repeat) for u, v in uvs]
+    gltf.add_node("back_wall", mesh=add_geometry(gltf, "back_wall", (positions, normals, uvs, indices), checker))
+    upper = quad((0, (top + height) / 2, -3), (4, 0, 0), (0, (height - top) / 2, 0))
+    gltf.add_node("back_wall_top", mesh=add_geometry(gltf, "back_wall_top", upper, white))
+
+    # The cove. The light faces straight up at y = 2.7, 1 m in front of the wall, so it washes the ceiling
+    # 2.3 m above it broadly, and the whole textured wall (y <= 2.5) is below its plane. The valance
+    # (y in [2.5, 2.71], z in [-1.8, -1.75], 2 cm short of the side walls) hides it: the camera's line of
+    # sight to the light's front edge (y = 2.7, z = -1.85) passes the valance at
+    # y = 1.4 + 1.3 * 6.25 / 6.35 = 2.68. The valance's top is only 1 cm above the light's plane, so the
+    # light does not shine on it from close by (which would make fireflies in the bounced light).
+    valance = box((-3.98, 2.5, -1.8), (3.98, 2.71, -1.75))
+    gltf.add_node("valance", mesh=add_geometry(gltf, "valance", valance, white))
+    panel = quad((0, 2.7, -2.0), (3.5, 0, 0), (0, 0, -0.15))  # cross(x, -z) = +Y
+    gltf.add_node("light", mesh=add_geometry(gltf, "light", panel, light))
+
+    tall = add_geometry(gltf, "tall_box", box((-0.4, 0, -0.25), (0.4, 1.6, 0.25)), orange)
+    tall_node = gltf.add_node("tall_box", mesh=tall, translation=(-3, 0, -1.8))
+    cube = add_geometry(gltf, "cube", box((-0.3, 0, -0.3), (0.3, 0.6, 0.3)), blue)
+    cube_node = gltf.add_node("cube", mesh=cube, translation=(2.5, 0, 0.5), rotation=axis_angle((0, 1, 0), 30))
+    gltf.add_animation("objects_move", [
+        (tall_node, "translation", [0.0, 3.0], [(-3, 0, -1.8), (3, 0, -1.8)], "LINEAR"),
+        (cube_node, "translation", [0.0, 3.0], [(2.5, 0, 0.5), (-2.5, 0, 0.5)], "LINEAR"),
+    ])
+
+    camera = gltf.add_camera("camera", yfov=math.radians(50), znear=0.05)
+    gltf.add_node("camera", camera=camera, translation=(0.05, 1.4, 4.5), rotation=axis_angle((1, 0, 0), -8))
+    return gltf
+
+
+# --- Static ----------------------------------------------------------------------------------------------
+# The still scene of the SVGF temporal-stability test [SVGF17 Sec. 5.4, Fig. 10]: "static light, camera, and
+# scene", where any change between frames is the filter's own flicker and it must converge. A Cornell-like
+# room x in [-2, 2], y in [0, 2.6], z in [-2, 2], open at z = 2, with an orange left and a blue right wall,
+# a 0.7 m cube and a 0.6 x 1.5 x 0.6 m column, lit by one 0.8 x 0.8 m ceiling light. No animation at all.
+
+
+def static():
+    gltf = gltf_writer.GltfBuilder("static")
+    white = gltf.add_material("white", WHITE)
+    orange = gltf.add_material("orange", (0.75, 0.35, 0.1, 1.0))
+    blue = gltf.add_material("blue", (0.1, 0.25, 0.6, 1.0))
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 0.92, 0.8), emissive_strength=20.0)
+
+    materials = {"floor": white, "ceiling": white, "back": white, "left": orange, "right": blue}
+    add_room(gltf, "room", (-2, 0, -2), (2, 2.6, 2), materials)  # no front wall
+    panel = quad((0, 2.59, 0), (0.4, 0, 0), (0, 0, 0.4))  # cross(x, z) = -Y: facing down
+    gltf.add_node("light", mesh=add_geometry(gltf, "light", panel, light))
+    cube = add_geometry(gltf, "cube", box((-0.35, 0, -0.35), (0.35, 0.7, 0.35)), white)
+    gltf.add_node("cube", mesh=cube, translation=(0.6, 0, 0.4), rotation=axis_angle((0, 1, 0), 25))
+    column = add_geometry(gltf, "column", box((-0.3, 0, -0.3), (0.3, 1.5, 0.3)), white)
+    gltf.add_node("column", mesh=column, translation=(-0.7, 0, -0.8), rotation=axis_angle((0, 1, 0), -20))
+
+    camera = gltf.add_camera("camera", yfov=math.radians(40), znear=0.05)
+    eye = (0.03, 1.3, 4.8)
+    gltf.add_node("camera", camera=camera, translation=eye, rotation=look_at(eye, (0, 1.2, 0)))
+    return gltf
+
+
+SCENES = {"cornell": cornell, "pillars": pillars, "flicker": flicker, "falling-light": falling_light,
+          "glossy": glossy, "fence": fence, "occlusion": occlusion, "static": static}
+
+
 def main():
-    cornell().write(os.path.join(HERE, "cornell.gltf"))
-    pillars().write(os.path.join(HERE, "pillars.gltf"))
+    for name, make in SCENES.items():
+        make().write(os.path.join(HERE, name + ".gltf"))
     make_test_fixtures.write_all(os.path.join(REPO, "tests", "data"))
 
 

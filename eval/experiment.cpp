@@ -52,11 +52,12 @@ void evaluate_method(const MethodSpec& spec, const std::vector<Frame>& inputs, c
     row.relmse = relmse(colour, ref_colour[k]);
     row.ssim = ssim(display, ref_display[k]);
     row.flip = flip(display, ref_display[k]).mean;
+    row.brightness_error = brightness_error(colour, ref_colour[k]);
     row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
     for (const auto& [pass, ms] : method->pass_times()) row.ms[pass] = ms, row.ms_total += ms;
     result.rows.push_back(row);
     previous_display = display;
-    if (k + 1 == inputs.size()) result.last_frame.push_back({spec.text, display});
+    if (k + 1 == inputs.size() && spec.params.empty()) result.last_frame.push_back({spec.text, display});
     tick();
   }
 }
@@ -127,12 +128,12 @@ void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& r
     for (const auto& [pass, ms] : r.ms) passes.insert(pass);
   std::ostringstream csv;
   csv.precision(9);
-  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,ms_total";
+  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,brightness_error,ms_total";
   for (const std::string& p : passes) csv << ",ms_" << p;
   csv << '\n';
   for (const MetricsRow& r : rows) {
     csv << r.method << ',' << r.params << ',' << r.frame << ',' << r.rmse << ',' << r.relmse << ',' << r.ssim << ','
-        << r.flip << ',' << r.temporal_error << ',' << r.ms_total;
+        << r.flip << ',' << r.temporal_error << ',' << r.brightness_error << ',' << r.ms_total;
     for (const std::string& p : passes) {
       csv << ',';
       if (r.ms.count(p)) csv << r.ms.at(p);

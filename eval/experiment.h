@@ -6,6 +6,7 @@
 //   ssim, flip        on tone-mapped display values in [0, 1] (the method's `display`, TAA included,
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
+//   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
 //   ms_total, ms_<pass>  wall time of the method's passes on this frame
 // A method is named by a spec "name[:param=value[:param=value...]]", e.g. "svgf:atrous_levels=3", where the
 // parameters are rows of filters/svgf/svgf_params.h; adding a method is a line in filters/method.cpp.
@@ -48,6 +49,7 @@ struct MetricsRow {
   int frame = 0;
   double rmse = 0, relmse = 0, ssim = 0, flip = 0;
   double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
+  double brightness_error = 0;  // relative error of the mean luminance, linear HDR (eval/metrics.h)
   double ms_total = 0;
   std::map<std::string, double> ms;  // per pass
 };
@@ -57,13 +59,14 @@ using EvalProgress = std::function<void(int, int)>;
 
 struct EvalResult {
   std::vector<MetricsRow> rows;
-  // The last frame side by side, for a strip image: the 1-spp input, each method's display, the reference.
+  // The last frame side by side, for a strip image: the 1-spp input, each method's display (default
+  // parameters only, not the sweeps), the reference.
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
-// method, params, frame, rmse, relmse, ssim, flip, temporal_error, ms_total, then one ms_<pass> column per pass
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, ms_total, then one ms_<pass> column per pass
 // of any method (empty where a method has no such pass). Written atomically.
 void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
 

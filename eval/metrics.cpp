@@ -386,4 +386,15 @@ int lag_frames_relative(const std::vector<double>& error, int change_frame, doub
   return lag_frames(error, change_frame, sum / count * (1.0 + tolerance));
 }
 
+double brightness_error(const RgbPlane& test, const RgbPlane& reference) {
+  if (test.width != reference.width || test.height != reference.height)
+    throw Error("brightness_error: images of different sizes");
+  double sum_test = 0.0, sum_reference = 0.0;
+  for (size_t i = 0; i < test.data.size(); ++i) {
+    sum_test += luminance(test.data[i]);
+    sum_reference += luminance(reference.data[i]);
+  }
+  return sum_reference > 0.0 ? std::abs(sum_test - sum_reference) / sum_reference : 0.0;
+}
+
 }  // namespace rtdr

@@ -77,6 +77,12 @@ FlipResult flip(const RgbPlane& test, const RgbPlane& reference, double pixels_p
 // not |luminance(a) - luminance(b)|, which is never larger.
 double temporal_error(const RgbPlane& current, const RgbPlane& previous);
 
+// The relative error of the image's mean luminance, |mean L(test) - mean L(reference)| / mean L(reference):
+// noise averages out over the image, bias does not, so after a sudden change in lighting (a light switched
+// on) it shows how far a temporal method's history still lags, free of the per-pixel noise that dominates
+// RMSE at 1 spp. 0 when the reference is black.
+double brightness_error(const RgbPlane& test, const RgbPlane& reference);
+
 // Lag of a per-frame error series after a sudden change at frame `change_frame` (the first frame that shows
 // the change): the number of frames k >= 0 until error[change_frame + k] is at or below `threshold`, so 0
 // means no lag at all. -1 if the series never gets back there.

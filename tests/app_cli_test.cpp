@@ -4,6 +4,8 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 
+#include "cli_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -19,37 +21,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code;
-  std::string err;
-};
+using namespace rtdr::cli;
 
-// A fresh, empty scratch folder per test case.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rtdr_cli_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-RunResult run_rtdr(const std::string& args, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string cmd = std::string(RTDR_EXE) + " " + args + " >/dev/null 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(err)};
-}
-
-size_t count_files(const fs::path& dir) {
-  if (!fs::exists(dir)) return 0;
-  return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
-}
+fs::path scratch(const std::string& name) { return rtdr::cli::scratch("rtdr_cli_test", name); }
+std::string read_file(const fs::path& p) { return read_text(p); }
+size_t count_files(const fs::path& dir) { return files_in(dir).size(); }
 
 // The channel names in the first column of the tables of docs/buffers.md that describe rendered frames
 // (everything before "# Filter outputs"): each `name` in the cell, where

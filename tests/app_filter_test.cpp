@@ -7,6 +7,8 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include "cli_fixtures.h"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -27,42 +29,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code;
-  std::string out, err;
-};
+using namespace rtdr::cli;
 
-fs::path scratch_root() { return fs::temp_directory_path() / ("rtdr_filter_test_" + std::to_string(::getpid())); }
-
-// A fresh, empty scratch folder per use.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Runs `rtdr args`, its stdout and stderr captured in files of `dir`.
-RunResult run_rtdr(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(RTDR_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
-}
-
-std::set<std::string> files_in(const fs::path& dir) {
-  std::set<std::string> names;
-  if (fs::exists(dir))
-    for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
+fs::path scratch(const std::string& name) { return rtdr::cli::scratch("rtdr_filter_test", name); }
 
 // The input sequence: frames 0-2 of cornell at 32x18, rendered once per process by `rtdr render`.
 const fs::path& sequence() {

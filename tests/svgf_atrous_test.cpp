@@ -9,6 +9,8 @@
 #include "filters/svgf/edge_stopping.h"
 #include "filters/svgf/prefilter.h"
 
+#include "svgf_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -20,17 +22,6 @@ using namespace rtdr;
 
 namespace {
 
-// A flat G-buffer: one plane facing the camera at depth 1 (gradient 0), normal +z, one mesh. Every edge-stopping
-// weight of depth and normal is exactly 1 here: |z_p - z_q| = 0 over 0 + epsilon is 0, and (0,0,1).(0,0,1) = 1.
-SurfacePlanes flat_surface(int w, int h) {
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h, 1.0f);
-  s.depth_grad = Vec2Plane(w, h, glm::vec2(0.0f));
-  s.normal = RgbPlane(w, h, glm::vec3(0.0f, 0.0f, 1.0f));
-  s.mesh = UIntPlane(w, h, 0u);
-  s.motion = Vec2Plane(w, h, glm::vec2(0.0f));
-  return s;
-}
 
 // A G-buffer where the weights differ from tap to tap: depth tilted along x, normals bending along y, a second
 // mesh, and a few pixels without a surface.

@@ -6,6 +6,8 @@
 #include "core/error.h"
 #include "core/parallel.h"
 
+#include "svgf_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -15,16 +17,6 @@ using namespace rtdr;
 
 namespace {
 
-// A flat, static G-buffer: one mesh facing the camera at depth 1, no motion.
-SurfacePlanes flat_surface(int w, int h, uint32_t mesh = 0, float depth = 1.0f) {
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h, depth);
-  s.depth_grad = Vec2Plane(w, h, glm::vec2(0.0f));
-  s.normal = RgbPlane(w, h, glm::vec3(0.0f, 0.0f, 1.0f));
-  s.mesh = UIntPlane(w, h, mesh);
-  s.motion = Vec2Plane(w, h, glm::vec2(0.0f));
-  return s;
-}
 
 // What the pipeline hands to the next frame; here the colour history is the integrated colour itself (no
 // a-trous in between).

@@ -5,6 +5,8 @@
 #include "core/error.h"
 #include "filters/svgf/temporal.h"
 
+#include "svgf_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -16,16 +18,6 @@ using namespace rtdr;
 
 namespace {
 
-// A flat, static G-buffer: one mesh facing the camera at depth 1, no motion.
-SurfacePlanes flat_surface(int w, int h) {
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h, 1.0f);
-  s.depth_grad = Vec2Plane(w, h, glm::vec2(0.0f));
-  s.normal = RgbPlane(w, h, glm::vec3(0.0f, 0.0f, 1.0f));
-  s.mesh = UIntPlane(w, h, 0u);
-  s.motion = Vec2Plane(w, h, glm::vec2(0.0f));
-  return s;
-}
 
 // A temporal output with the given moments and history length everywhere.
 TemporalOutput moments(int w, int h, float mu1, float mu2, float n) {

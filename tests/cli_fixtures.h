@@ -1,0 +1,54 @@
+// Running the real `rtdr` binary (RTDR_EXE) from tests, as a user would, in scratch folders.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace rtdr::cli {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code;
+  std::string out, err;
+};
+
+// A fresh, empty folder `name` under this process's scratch root `root` (e.g. "rtdr_cli_test").
+inline fs::path scratch(const std::string& root, const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / (root + "_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+inline std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs `rtdr args`, its stdout and stderr captured in files of `dir`.
+inline RunResult run_rtdr(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(RTDR_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+}
+
+// The names of the files in `dir` (none when it does not exist).
+inline std::set<std::string> files_in(const fs::path& dir) {
+  std::set<std::string> names;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+}  // namespace rtdr::cli

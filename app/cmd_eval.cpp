@@ -94,6 +94,8 @@ void run_eval_command(const EvalOptions& o) {
     throw Error("the charts failed: " + charts + " (needs Debian's python3-matplotlib; run tools/setup.sh)");
   std::printf("wrote %s, speed_vs_accuracy.png, error_over_frames.png, temporal_error.png and strip.png in %s\n",
               csv.c_str(), o.out.c_str());
+  std::printf("metrics.csv: rmse, relmse, brightness_error on linear HDR radiance; ssim, flip, temporal_error on "
+              "tone-mapped display values (eval/README.md)\n");
   std::printf("strip.png, left to right:");
   for (const auto& [name, image] : result.last_frame) std::printf(" | %s", name.c_str());
   std::printf("\n");

@@ -2,11 +2,11 @@
 #include "eval/experiment.h"
 
 #include "core/atomic_file.h"
-#include "core/color.h"
 #include "core/error.h"
 #include "eval/frame_cache.h"
 #include "eval/metrics.h"
 #include "filters/method.h"
+#include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
 #include "scenes/gltf_loader.h"
 
@@ -25,14 +25,10 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return parts;
 }
 
-// The colour a frame shows: emission + albedo (direct + indirect), the path tracer's split undone.
+// The colour a rendered frame shows: its demodulated illumination remodulated, emission + albedo (direct +
+// indirect), exactly as the methods remodulate theirs [SVGF17 Sec. 3].
 RgbPlane frame_colour(const Frame& f) {
-  const RgbPlane direct = rgb_plane(f, "direct"), indirect = rgb_plane(f, "indirect");
-  const RgbPlane albedo = rgb_plane(f, "albedo"), emission = rgb_plane(f, "emission");
-  RgbPlane c(f.width(), f.height());
-  for (size_t i = 0; i < c.data.size(); ++i)
-    c.data[i] = emission.data[i] + demodulation_factor(albedo.data[i]) * (direct.data[i] + indirect.data[i]);
-  return c;
+  return remodulate(rgb_plane(f, "direct"), rgb_plane(f, "indirect"), rgb_plane(f, "albedo"), rgb_plane(f, "emission"));
 }
 
 // One method over the whole sequence: a row of metrics per frame.

@@ -1,4 +1,5 @@
-// The surface a sample names: position, normals and material at one point of one triangle, at time t.
+// The surface a sample names: position, normals and material at one point of one triangle, at time t; the
+// G-buffer attributes of [ASVGF18 Sec. 3.1] and the albedo SVGF demodulates by [SVGF17 Sec. 3].
 //
 // One definition for every consumer: the G-buffer resolve (primary hits, seen from the eye) and the path
 // tracer (primary hits re-shaded from the visibility buffer, and secondary hits found by Embree), so the

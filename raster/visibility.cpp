@@ -1,4 +1,5 @@
-// The visibility-buffer rasterizer. Conventions in raster/visibility.h; the walk-through in raster/README.md.
+// The visibility-buffer rasterizer [ASVGF18 Sec. 3.1: primary visibility as (instance, triangle, barycentrics)].
+// Conventions in raster/visibility.h; the walk-through in raster/README.md.
 //
 // Three steps:
 //   1. clip:  each triangle is clipped in homogeneous clip space to w >= znear and to the guard band; every

@@ -1,4 +1,5 @@
-// The Embree 3 scene of one frame. See embree_scene.h.
+// The Embree 3 scene of one frame: the secondary and shadow rays of the path [SVGF17 Sec. 3] (primary
+// visibility is rasterized). See embree_scene.h.
 //
 // Embree's idiom (its "minimal" tutorial), followed step by step here:
 //   1. one device per process, with an error callback;

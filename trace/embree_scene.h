@@ -1,4 +1,5 @@
-// The Embree 3 scene of one frame: every instance's triangles in world space at the pose's time t.
+// The Embree 3 scene of one frame: every instance's triangles in world space at the pose's time t, for the
+// secondary and shadow rays of [SVGF17 Sec. 3].
 //
 // Geometry ids equal instance indices, so an Embree hit names the same (instance, triangle) as the
 // visibility buffer. The scene is rebuilt per pose (our scenes are small); the device is shared.

@@ -1,4 +1,5 @@
-// The area lights of one frame and their power-proportional choice. See lights.h.
+// The area lights of one frame and their power-proportional choice, for next-event estimation [SVGF17 Sec. 3].
+// See lights.h.
 #include "trace/lights.h"
 
 #include "core/color.h"

@@ -1,4 +1,5 @@
-// The edge-avoiding a-trous filter of Dammertz et al. 2010 [EAW10], the baseline of SVGF's spatial filter. At
+// The edge-avoiding a-trous filter of Dammertz et al. 2010 [EAW10], the baseline SVGF compares against [SVGF17 Sec. 5.4,
+// Table 1], and the origin of its spatial filter [SVGF17 Sec. 4.3]. At
 // level i, pixel p gathers the 5 x 5 taps q = p + 2^i (dx, dy), dx, dy in -2..2, with the B3-spline kernel
 // h(q) = h(dx) h(dy) (the same kernel SVGF took over, filters/svgf/atrous.h) and the weight
 //   w(p, q) = w_rt w_n w_x,   w_j = exp(-||I_j(p) - I_j(q)||^2 / sigma_j^2)                     [EAW10]

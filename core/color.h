@@ -2,6 +2,8 @@
 // Rec. 709 / sRGB primaries (scenes/scene.h); these functions turn them into displayable bytes.
 #pragma once
 
+#include "core/demodulation_shared.h"
+
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -44,7 +46,7 @@ inline uint8_t to_byte(float encoded) {
 // Demodulation [SVGF17 Sec. 3]: illumination = radiance / albedo, so the filters never blur texture. Where
 // an albedo channel is (near) 0 the division is guarded by a floor (as Falcor's SVGF does); remodulation
 // multiplies by the same factor, so demodulate-then-remodulate is exact for every albedo.
-inline constexpr float kMinDemodulationAlbedo = 1e-3f;
+inline constexpr float kMinDemodulationAlbedo = float(RTDR_MIN_DEMODULATION_ALBEDO);  // core/demodulation_shared.h
 inline glm::vec3 demodulation_factor(const glm::vec3& albedo) { return glm::max(albedo, glm::vec3(kMinDemodulationAlbedo)); }
 
 }  // namespace rtdr

@@ -9,6 +9,8 @@ PACKAGES=(
   cmake g++ pkg-config ninja-build
   libglm-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev catch2 libtbb-dev
   libcli11-dev nlohmann-json3-dev zlib1g-dev
+  # Vulkan ports (gpu/): headers and loader, build-time glslc, and lavapipe as the device where there is no GPU.
+  libvulkan-dev glslc spirv-tools mesa-vulkan-drivers vulkan-validationlayers
   # Charts and notebooks run on Debian's Python (/usr/bin/python3), not whatever python3 is on PATH.
   python3-numpy python3-matplotlib python3-openimageio python3-skimage jupyter-nbconvert python3-ipykernel
 )

@@ -1,0 +1,74 @@
+// The Vulkan device every port runs on: instance, physical device, one compute queue, one command pool.
+//
+// Device choice: the device whose name contains $RTDR_VK_DEVICE when that is set; else the first NVIDIA GPU;
+// else the first device (on a machine with no GPU: lavapipe, "llvmpipe", mesa-vulkan-drivers).
+// With `validation`, the instance loads VK_LAYER_KHRONOS_validation and a VK_EXT_debug_utils messenger that
+// counts the warnings and errors it reports and keeps their text, so tests can assert there were none.
+// Failures throw rtdr::Error; available() says beforehand whether a context can be made at all.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+struct VulkanOptions {
+  bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages
+};
+
+// What the validation layer said: warnings and errors only (info and verbose are not kept).
+struct ValidationLog {
+  int warnings = 0;
+  int errors = 0;
+  std::vector<std::string> messages;
+};
+
+class VulkanContext {
+ public:
+  explicit VulkanContext(const VulkanOptions& options = {});
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  // True when an instance and a device with a compute queue can be created; otherwise false, and `reason`
+  // (when given) says why, for tests to print when they skip.
+  static bool available(std::string* reason = nullptr);
+
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  VkCommandPool command_pool() const { return command_pool_; }
+  const std::string& device_name() const { return device_name_; }
+
+  // Timestamp queries: supported when the compute queue has valid bits; a tick lasts timestamp_period_ns.
+  bool has_timestamps() const { return timestamp_valid_bits_ > 0; }
+  float timestamp_period_ns() const { return timestamp_period_ns_; }
+
+  // The validation layer's warnings and errors so far (all zero without `validation`).
+  const ValidationLog& validation_log() const { return *log_; }
+
+  // A memory type index among `type_bits` with all of `properties`; throws rtdr::Error when there is none.
+  uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
+
+ private:
+  void release();  // destroys whatever was created, in reverse order; the destructor and a failed constructor
+
+  std::unique_ptr<ValidationLog> log_;  // on the heap: the messenger keeps its address
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  std::string device_name_;
+  uint32_t timestamp_valid_bits_ = 0;
+  float timestamp_period_ns_ = 0.0f;
+};
+
+// Throws rtdr::Error naming `what` when `result` is not VK_SUCCESS.
+void vk_check(VkResult result, const char* what);
+
+}  // namespace rtdr

@@ -2,6 +2,7 @@
 // Rec. 709 / sRGB primaries (scenes/scene.h); these functions turn them into displayable bytes.
 #pragma once
 
+#include "core/color_shared.h"
 #include "core/demodulation_shared.h"
 
 #include <glm/glm.hpp>
@@ -13,8 +14,11 @@ namespace rtdr {
 
 // Relative luminance Y of a linear RGB colour. The weights are the Y row of the linear RGB -> XYZ matrix
 // for Rec. 709 primaries and a D65 white (IEC 61966-2-1:1999 Sec. 5.2; ITU-R BT.709-6 Item 3.2 lists the
-// same three numbers). They sum to 1, so white (1, 1, 1) has luminance 1.
-inline float luminance(const glm::vec3& rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
+// same three numbers). They sum to 1, so white (1, 1, 1) has luminance 1. The numbers live in
+// core/color_shared.h, shared with the GLSL ports.
+inline float luminance(const glm::vec3& rgb) {
+  return RTDR_LUMINANCE_R * rgb.r + RTDR_LUMINANCE_G * rgb.g + RTDR_LUMINANCE_B * rgb.b;
+}
 
 // The sRGB encoding curve (IEC 61966-2-1:1999 Sec. 5.2): a linear segment of slope 12.92 near black,
 // then a 1/2.4 power curve offset so the two meet at linear 0.0031308 (encoded 0.04045). Maps [0, 1]

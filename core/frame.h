@@ -6,6 +6,8 @@
 // uint channels hold ids exactly (kInvalidId marks "no surface").
 #pragma once
 
+#include "core/frame_shared.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -16,7 +18,7 @@
 namespace rtdr {
 
 // The id stored where a pixel sees no surface (same value as Embree's RTC_INVALID_GEOMETRY_ID).
-inline constexpr uint32_t kInvalidId = 0xFFFFFFFFu;
+inline constexpr uint32_t kInvalidId = RTDR_INVALID_ID;  // core/frame_shared.h
 
 template <class T>
 struct Plane {

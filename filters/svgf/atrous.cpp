@@ -23,6 +23,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/svgf/atrous_shared.h"
 #include "filters/svgf/edge_stopping.h"
 #include "filters/svgf/prefilter.h"
 
@@ -33,13 +34,14 @@
 namespace rtdr {
 
 AtrousKernel atrous_kernel(int kernel_size) {
-  if (kernel_size == 5) return {2, {1.0f / 16.0f, 1.0f / 4.0f, 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f}};
+  // The weights are written once, in atrous_shared.h, which the Vulkan port (atrous.comp) includes too.
+  if (kernel_size == 5) return {2, {kAtrousB3Outer, kAtrousB3Inner, kAtrousB3Centre, kAtrousB3Inner, kAtrousB3Outer}};
   // A-SVGF names a "simple 3x3 box filter" [ASVGF18 Sec. 4, Sec. 3.4]: equal weights. Their scale cancels in
   // Eq. 1 and in the variance equation (h^2 over (h)^2); 1/3 makes h sum to 1 like the B3 kernel.
   // (The paper quotes a 49 x 49 region for five levels. Counting taps: the last level alone spans 2 * 16 + 1 = 33
   // pixels, the five levels chained reach 1 + 2 + 4 + 8 + 16 = 31 pixels each way, 63 x 63. SVGF's "65 x 65"
   // [SVGF17 Sec. 4.3] is the last 5x5 level alone, 2 * 2 * 16 + 1.)
-  if (kernel_size == 3) return {1, {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f}};
+  if (kernel_size == 3) return {1, {kAtrousBox, kAtrousBox, kAtrousBox}};
   throw Error("svgf a-trous kernel_size must be 3 or 5, got " + std::to_string(kernel_size));
 }
 

@@ -29,11 +29,9 @@
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/svgf_shared.h"
 #include "filters/svgf/temporal.h"
+#include "filters/svgf/variance_shared.h"  // kVarianceSpatialRadius, written once for C++ and GLSL
 
 namespace rtdr {
-
-// The spatial fallback's footprint: (2 r + 1)^2 = 7x7 pixels [SVGF17 Sec. 4.2, "a 7 x 7 bilateral filter"].
-inline constexpr int kVarianceSpatialRadius = 3;
 
 // The golden per-pixel function: sigma'^2 at (x, y), 0 where no surface.
 float variance_pixel(const TemporalOutput& t, const SurfacePlanes& cur, const SvgfParams& params, int x, int y,

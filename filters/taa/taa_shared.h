@@ -1,0 +1,53 @@
+// What TAA's C++ (taa.cpp, gpu/taa_gpu.cpp) and GLSL (taa.comp) share, written once: the workgroup size and the
+// push-constant block. Both compilers include this file; GLSL has the C preprocessor, and the #ifdef __cplusplus
+// block maps GLSL's `uint` and `vec2` to C++.
+//
+// Buffer layout of the port (std430, set 0): binding 0 is the current colour, binding 1 the history (a 1-float
+// placeholder when has_history is 0), binding 2 the motion, binding 3 the output. Colours are float arrays with
+// 3 floats per pixel, R G B, pixel (x, y) at floats 3 * (y * width + x) + 0..2: exactly RgbPlane::data; motion
+// has 2 floats per pixel, X Y, at 2 * (y * width + x) + 0..1: exactly Vec2Plane::data (glm::vec2 is 2 packed
+// floats). All planes are row-major, y down, of size width x height.
+#ifndef RTDR_FILTERS_TAA_TAA_SHARED_H
+#define RTDR_FILTERS_TAA_TAA_SHARED_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+namespace rtdr {
+#define RTDR_SHARED_UINT std::uint32_t
+#define RTDR_SHARED_VEC2 glm::vec2
+#define RTDR_SHARED_CONST inline constexpr
+#else
+#define RTDR_SHARED_UINT uint
+#define RTDR_SHARED_VEC2 vec2
+#define RTDR_SHARED_CONST const
+#endif
+
+// One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeX = 8;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeY = 8;
+
+// The push-constant block (std430 in GLSL; every member sits at its natural C++ offset, vec2s at multiples of 8).
+struct TaaPush {
+  RTDR_SHARED_UINT width;            // the frame size: invocations outside it (the last tiles) do nothing
+  RTDR_SHARED_UINT height;
+  float alpha;                       // TaaParams::alpha, the weight of the current frame
+  RTDR_SHARED_UINT clip_history;     // TaaParams::clip_history: 1 clip towards the mean, 0 clamp
+  RTDR_SHARED_VEC2 jitter_current;   // TaaJitter::current, pixels
+  RTDR_SHARED_VEC2 jitter_previous;  // TaaJitter::previous, pixels
+  RTDR_SHARED_UINT has_history;      // 0: history is empty (width 0), the output is the current colour
+  RTDR_SHARED_UINT padding;          // rounds the block up to its 8-byte alignment, 40 bytes on both sides
+};
+
+#undef RTDR_SHARED_UINT
+#undef RTDR_SHARED_VEC2
+#undef RTDR_SHARED_CONST
+#ifdef __cplusplus
+static_assert(sizeof(TaaPush) == 40 && offsetof(TaaPush, jitter_current) == 16 &&
+              offsetof(TaaPush, jitter_previous) == 24 && offsetof(TaaPush, has_history) == 32);
+}  // namespace rtdr
+#endif
+
+#endif  // RTDR_FILTERS_TAA_TAA_SHARED_H

@@ -1,0 +1,183 @@
+// Tests of gpu/taa_gpu.cpp: the Vulkan port (filters/taa/taa.comp) against the golden taa_pass()
+// (filters/taa/taa.cpp) on random planes and rendered frames, with the validation layer on. Skipped, with a
+// message, where no Vulkan device exists.
+//
+// Bound: per channel, max |gpu - golden| <= 2e-6 for display colours in [0, 1]; the relative error is measured
+// and reported but not bounded (an output near 0 is a difference of values near 1). Derivation: both sides do the
+// same fp32 operations in the same order and the shader marks them `precise` (no fma contraction), so the
+// history position, the on-screen test, the bilinear taps and weights, the box and the blend round alike. The
+// only allowed differences are the divisions, which Vulkan lets be off by 2.5 ulp (Vulkan spec, "Precision and
+// Operation of SPIR-V Instructions") where C++ rounds correctly: the mean sum / 9 (YCoCg components in
+// [-0.5, 1], so 2.5 ulp <= 2.5 * 2^-24 ~ 1.5e-7 absolute) and the clip t = (face - mean) / d in [0, 1] (the
+// clipped point mean + t (h - mean) moves by 2.5 ulp(t) * |h - mean| <= 1.5e-7 * 1.5, plus the mean's error).
+// A YCoCg component is thus off by at most ~4e-7 before the blend; (Y + Co) - Cg sums three such errors and
+// adds one rounding of a value <= 2: 3 * 4e-7 + 1.2e-7 ~ 1.3e-6 < 2e-6.
+#include "gpu/taa_gpu.h"
+
+#include "core/error.h"
+#include "filters/svgf/modulate.h"
+#include "filters/svgf/tonemap.h"
+#include "filters/taa/taa.h"
+#include "raster/backproject.h"
+#include "scenes/gltf_loader.h"
+#include "trace/render_frame.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+
+using namespace rtdr;
+
+namespace {
+
+constexpr double kMaxAbsError = 2e-6;
+
+// Per channel, the largest absolute and relative (to the golden value) difference.
+struct Errors {
+  glm::dvec3 abs{0.0}, rel{0.0};
+};
+
+Errors compare(const RgbPlane& gpu, const RgbPlane& golden) {
+  Errors e;
+  for (size_t i = 0; i < golden.data.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double diff = std::abs(double(gpu.data[i][c]) - double(golden.data[i][c]));
+      e.abs[c] = std::max(e.abs[c], diff);
+      if (golden.data[i][c] != 0.0f) e.rel[c] = std::max(e.rel[c], diff / std::abs(double(golden.data[i][c])));
+    }
+  return e;
+}
+
+void check_within_bound(const RgbPlane& gpu, const RgbPlane& golden) {
+  REQUIRE(gpu.width == golden.width);
+  REQUIRE(gpu.height == golden.height);
+  const Errors e = compare(gpu, golden);
+  for (int c = 0; c < 3; ++c) {
+    INFO("channel " << "RGB"[c] << ": max abs error " << e.abs[c] << ", max relative error " << e.rel[c]);
+    CHECK(e.abs[c] <= kMaxAbsError);
+  }
+}
+
+RgbPlane random_plane(std::mt19937& rng, int w, int h, float lo, float hi) {
+  std::uniform_real_distribution<float> value(lo, hi);
+  RgbPlane p(w, h);
+  for (glm::vec3& v : p.data) v = glm::vec3(value(rng), value(rng), value(rng));
+  return p;
+}
+
+// Motion of every kind: sub-pixel and a few pixels (on screen), far off screen, and behind the camera.
+Vec2Plane random_motion(std::mt19937& rng, int w, int h) {
+  std::uniform_real_distribution<float> near(-3.0f, 3.0f), far(-60.0f, 60.0f);
+  Vec2Plane motion(w, h);
+  for (size_t i = 0; i < motion.data.size(); ++i) {
+    if (i % 9 == 4) motion.data[i] = glm::vec2(far(rng), far(rng));
+    else if (i % 13 == 6) motion.data[i] = glm::vec2(kMotionBehindCamera);
+    else if (i % 17 == 8) motion.data[i] = glm::vec2(0.0f);
+    else motion.data[i] = glm::vec2(near(rng), near(rng));
+  }
+  return motion;
+}
+
+// The device for these tests, with the validation layer; null (after a WARN saying why) when there is none.
+std::unique_ptr<VulkanContext> validated_context() {
+  std::string reason;
+  if (!VulkanContext::available(&reason)) {
+    WARN("SKIPPED: no Vulkan device: " << reason);
+    return nullptr;
+  }
+  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true});
+}
+
+void check_no_validation_messages(const VulkanContext& context) {
+  const ValidationLog& log = context.validation_log();
+  for (const std::string& message : log.messages) UNSCOPED_INFO(message);
+  CHECK(log.warnings == 0);
+  CHECK(log.errors == 0);
+}
+
+RgbPlane display_colour(const Frame& frame) {
+  return tonemap(remodulate(rgb_plane(frame, "direct"), rgb_plane(frame, "indirect"), rgb_plane(frame, "albedo"),
+                            rgb_plane(frame, "emission")),
+                 TonemapParams{});
+}
+
+}  // namespace
+
+TEST_CASE("the port matches taa_pass on random planes of an odd size, with every kind of motion and jitter") {
+  const auto context = validated_context();
+  if (!context) return;
+  INFO("device: " << context->device_name());
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), half(-0.5f, 0.5f);
+  const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const RgbPlane current = random_plane(rng, w, h, 0.0f, 1.0f), history = random_plane(rng, w, h, 0.0f, 1.0f);
+  const Vec2Plane motion = random_motion(rng, w, h);
+
+  taa_vulkan(*context, current, history, motion, TaaParams{});  // warm-up: lavapipe compiles on first use
+  for (int trial = 0; trial < 8; ++trial) {
+    const TaaParams params{.alpha = trial == 0 ? TaaParams{}.alpha : unit(rng), .clip_history = trial % 2 == 0 ? 1 : 0};
+    const TaaJitter jitter = trial < 2 ? TaaJitter{} : TaaJitter{{half(rng), half(rng)}, {half(rng), half(rng)}};
+    INFO("trial " << trial << ": alpha " << params.alpha << ", clip_history " << params.clip_history << ", jitter ("
+                  << jitter.current.x << ", " << jitter.current.y << ") previous (" << jitter.previous.x << ", "
+                  << jitter.previous.y << ")");
+    const RgbPlane golden = taa_pass(current, history, motion, params, jitter);
+    double ms = 0.0;
+    const RgbPlane gpu = taa_vulkan(*context, current, history, motion, params, jitter, &ms);
+    check_within_bound(gpu, golden);
+    INFO("dispatch " << ms << " ms on " << context->device_name());
+    CHECK(ms > 0.0);
+  }
+  check_no_validation_messages(*context);
+}
+
+TEST_CASE("without history the port returns the current colour, as taa_pass does") {
+  const auto context = validated_context();
+  if (!context) return;
+  std::mt19937 rng(29);
+  const int w = 41, h = 29;
+  const RgbPlane current = random_plane(rng, w, h, 0.0f, 1.0f);
+  const Vec2Plane motion = random_motion(rng, w, h);
+  const TaaJitter jitter{taa_jitter(3), taa_jitter(2)};
+  const RgbPlane golden = taa_pass(current, RgbPlane(), motion, TaaParams{}, jitter);
+  const RgbPlane gpu = taa_vulkan(*context, current, RgbPlane(), motion, TaaParams{}, jitter);
+  check_within_bound(gpu, golden);
+  CHECK(gpu.data == current.data);
+  check_no_validation_messages(*context);
+}
+
+TEST_CASE("the port matches taa_pass on rendered cornell frames") {
+  const auto context = validated_context();
+  if (!context) return;
+  const Scene scene = load_scene("cornell");
+  const Frame previous = render_frame(scene, 0, 64, 36, {});
+  const Frame frame = render_frame(scene, 1, 64, 36, {});
+  const RgbPlane history = display_colour(previous), current = display_colour(frame);
+  const Vec2Plane motion = xy_plane(frame, "motion");
+  // render_frame's motion is jitter-free (TaaJitter{}); the Halton pair exercises the jitter terms as well.
+  for (const TaaJitter& jitter : {TaaJitter{}, TaaJitter{taa_jitter(1), taa_jitter(0)}}) {
+    for (const int clip : {1, 0}) {
+      const TaaParams params{.clip_history = clip};
+      INFO("clip_history " << clip << ", jitter (" << jitter.current.x << ", " << jitter.current.y << ")");
+      const RgbPlane golden = taa_pass(current, history, motion, params, jitter);
+      double ms = 0.0;
+      const RgbPlane gpu = taa_vulkan(*context, current, history, motion, params, jitter, &ms);
+      check_within_bound(gpu, golden);
+      CHECK(ms > 0.0);
+    }
+  }
+  check_no_validation_messages(*context);
+}
+
+TEST_CASE("the port rejects what taa_pass rejects") {
+  const auto context = validated_context();
+  if (!context) return;
+  const RgbPlane a(4, 4), b(4, 5);
+  const Vec2Plane m(4, 4), m_wrong(5, 4);
+  CHECK_THROWS_AS(taa_vulkan(*context, a, a, m_wrong, TaaParams{}), Error);
+  CHECK_THROWS_AS(taa_vulkan(*context, a, b, m, TaaParams{}), Error);
+  CHECK_THROWS_AS(taa_vulkan(*context, a, a, m, TaaParams{.alpha = 2.0f}), Error);
+}

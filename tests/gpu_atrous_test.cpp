@@ -21,6 +21,8 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include "gpu_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -30,6 +32,7 @@
 #include <string>
 
 using namespace rtdr;
+using namespace rtdr::gpu_test;
 
 namespace {
 
@@ -73,23 +76,6 @@ void check_within_bound(const AtrousOutput& gpu, const AtrousOutput& golden) {
   for (int c = 0; c < 3; ++c) check(colour[c], std::string("colour ") + "RGB"[c], g_colour);
   check(variance, "variance", g_variance);
   check(prefiltered, "prefiltered variance", g_prefiltered);
-}
-
-// The device for these tests, with the validation layer; null (after a WARN saying why) when there is none.
-std::unique_ptr<VulkanContext> validated_context() {
-  std::string reason;
-  if (!VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return nullptr;
-  }
-  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true});
-}
-
-void check_no_validation_messages(const VulkanContext& context) {
-  const ValidationLog& log = context.validation_log();
-  for (const std::string& message : log.messages) UNSCOPED_INFO(message);
-  CHECK(log.warnings == 0);
-  CHECK(log.errors == 0);
 }
 
 // Random G-buffer: depth in [1, 3] with gradients that sometimes match it, unit normals spread around +z (some

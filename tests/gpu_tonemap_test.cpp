@@ -18,6 +18,8 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include "gpu_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -27,62 +29,12 @@
 #include <string>
 
 using namespace rtdr;
+using namespace rtdr::gpu_test;
 
 namespace {
 
 constexpr double kMaxAbsError = 1e-6;
 constexpr double kMaxRelError = 1e-6;
-
-// Per channel, the largest absolute and relative (to the golden value) difference.
-struct Errors {
-  glm::dvec3 abs{0.0}, rel{0.0};
-};
-
-Errors compare(const RgbPlane& gpu, const RgbPlane& golden) {
-  Errors e;
-  for (size_t i = 0; i < golden.data.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double diff = std::abs(double(gpu.data[i][c]) - double(golden.data[i][c]));
-      e.abs[c] = std::max(e.abs[c], diff);
-      if (golden.data[i][c] != 0.0f) e.rel[c] = std::max(e.rel[c], diff / std::abs(double(golden.data[i][c])));
-    }
-  return e;
-}
-
-void check_within_bound(const RgbPlane& gpu, const RgbPlane& golden) {
-  REQUIRE(gpu.width == golden.width);
-  REQUIRE(gpu.height == golden.height);
-  const Errors e = compare(gpu, golden);
-  for (int c = 0; c < 3; ++c) {
-    INFO("channel " << "RGB"[c] << ": max abs error " << e.abs[c] << ", max relative error " << e.rel[c]);
-    CHECK(e.abs[c] <= kMaxAbsError);
-    CHECK(e.rel[c] <= kMaxRelError);
-  }
-}
-
-RgbPlane random_plane(std::mt19937& rng, int w, int h, float lo, float hi) {
-  std::uniform_real_distribution<float> value(lo, hi);
-  RgbPlane p(w, h);
-  for (glm::vec3& v : p.data) v = glm::vec3(value(rng), value(rng), value(rng));
-  return p;
-}
-
-// The device for these tests, with the validation layer; null (after a WARN saying why) when there is none.
-std::unique_ptr<VulkanContext> validated_context() {
-  std::string reason;
-  if (!VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return nullptr;
-  }
-  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true});
-}
-
-void check_no_validation_messages(const VulkanContext& context) {
-  const ValidationLog& log = context.validation_log();
-  for (const std::string& message : log.messages) UNSCOPED_INFO(message);
-  CHECK(log.warnings == 0);
-  CHECK(log.errors == 0);
-}
 
 }  // namespace
 
@@ -105,7 +57,7 @@ TEST_CASE("the port matches tonemap on random HDR planes of an odd size, black a
     const RgbPlane golden = tonemap(colour, params);
     double ms = 0.0;
     const RgbPlane gpu = tonemap_vulkan(*context, colour, params, &ms);
-    check_within_bound(gpu, golden);
+    check_rgb_within(gpu, golden, kMaxAbsError, kMaxRelError);
     INFO("dispatch " << ms << " ms on " << context->device_name());
     CHECK(ms > 0.0);
   }
@@ -121,7 +73,7 @@ TEST_CASE("the port matches tonemap on a rendered cornell frame") {
   const RgbPlane golden = tonemap(colour, TonemapParams{});
   double ms = 0.0;
   const RgbPlane gpu = tonemap_vulkan(*context, colour, TonemapParams{}, &ms);
-  check_within_bound(gpu, golden);
+  check_rgb_within(gpu, golden, kMaxAbsError, kMaxRelError);
   CHECK(ms > 0.0);
   check_no_validation_messages(*context);
 }

@@ -24,6 +24,8 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include "gpu_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -33,6 +35,7 @@
 #include <string>
 
 using namespace rtdr;
+using namespace rtdr::gpu_test;
 
 namespace {
 
@@ -150,23 +153,6 @@ TemporalOutput random_temporal(std::mt19937& rng, int w, int h) {
     t.length.data[i] = lengths[std::min(7, int(8.0f * u(rng)))];
   }
   return t;
-}
-
-// The device for these tests, with the validation layer; null (after a WARN saying why) when there is none.
-std::unique_ptr<VulkanContext> validated_context() {
-  std::string reason;
-  if (!VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return nullptr;
-  }
-  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true});
-}
-
-void check_no_validation_messages(const VulkanContext& context) {
-  const ValidationLog& log = context.validation_log();
-  for (const std::string& message : log.messages) UNSCOPED_INFO(message);
-  CHECK(log.warnings == 0);
-  CHECK(log.errors == 0);
 }
 
 }  // namespace

@@ -17,16 +17,10 @@
 
 #include "core/frame_shared.h"
 
-#ifdef __cplusplus
-#include "core/frame.h"
+#include "core/shader_shared.h"
 
-#include <cstdint>
+#ifdef __cplusplus
 namespace rtdr {
-#define RTDR_SHARED_UINT std::uint32_t
-#define RTDR_SHARED_CONST inline constexpr
-#else
-#define RTDR_SHARED_UINT uint
-#define RTDR_SHARED_CONST const
 #endif
 
 // One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
@@ -55,8 +49,6 @@ struct TemporalPush {
   float temporal_normal_cosine;
 };
 
-#undef RTDR_SHARED_UINT
-#undef RTDR_SHARED_CONST
 #ifdef __cplusplus
 }  // namespace rtdr
 #endif

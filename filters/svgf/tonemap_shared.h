@@ -11,14 +11,10 @@
 
 #include "core/color_shared.h"
 
+#include "core/shader_shared.h"
+
 #ifdef __cplusplus
-#include <cstdint>
 namespace rtdr {
-#define RTDR_SHARED_UINT std::uint32_t
-#define RTDR_SHARED_CONST inline constexpr
-#else
-#define RTDR_SHARED_UINT uint
-#define RTDR_SHARED_CONST const
 #endif
 
 // One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
@@ -33,8 +29,6 @@ struct TonemapPush {
   float exposure;
 };
 
-#undef RTDR_SHARED_UINT
-#undef RTDR_SHARED_CONST
 #ifdef __cplusplus
 }  // namespace rtdr
 #endif

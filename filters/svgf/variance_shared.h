@@ -13,18 +13,10 @@
 
 #include "core/frame_shared.h"
 
-#ifdef __cplusplus
-#include "core/frame.h"
+#include "core/shader_shared.h"
 
-#include <cstdint>
+#ifdef __cplusplus
 namespace rtdr {
-#define RTDR_SHARED_UINT std::uint32_t
-#define RTDR_SHARED_INT int
-#define RTDR_SHARED_CONST inline constexpr
-#else
-#define RTDR_SHARED_UINT uint
-#define RTDR_SHARED_INT int
-#define RTDR_SHARED_CONST const
 #endif
 
 // The spatial fallback's footprint: (2 r + 1)^2 = 7x7 pixels [SVGF17 Sec. 4.2, "a 7 x 7 bilateral filter"].
@@ -49,9 +41,6 @@ struct VariancePush {
   float epsilon;
 };
 
-#undef RTDR_SHARED_UINT
-#undef RTDR_SHARED_INT
-#undef RTDR_SHARED_CONST
 #ifdef __cplusplus
 }  // namespace rtdr
 #endif

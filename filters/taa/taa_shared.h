@@ -10,19 +10,11 @@
 #ifndef RTDR_FILTERS_TAA_TAA_SHARED_H
 #define RTDR_FILTERS_TAA_TAA_SHARED_H
 
-#ifdef __cplusplus
-#include <glm/glm.hpp>
+#include "core/shader_shared.h"
 
+#ifdef __cplusplus
 #include <cstddef>
-#include <cstdint>
 namespace rtdr {
-#define RTDR_SHARED_UINT std::uint32_t
-#define RTDR_SHARED_VEC2 glm::vec2
-#define RTDR_SHARED_CONST inline constexpr
-#else
-#define RTDR_SHARED_UINT uint
-#define RTDR_SHARED_VEC2 vec2
-#define RTDR_SHARED_CONST const
 #endif
 
 // One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
@@ -41,9 +33,6 @@ struct TaaPush {
   RTDR_SHARED_UINT padding;          // rounds the block up to its 8-byte alignment, 40 bytes on both sides
 };
 
-#undef RTDR_SHARED_UINT
-#undef RTDR_SHARED_VEC2
-#undef RTDR_SHARED_CONST
 #ifdef __cplusplus
 static_assert(sizeof(TaaPush) == 40 && offsetof(TaaPush, jitter_current) == 16 &&
               offsetof(TaaPush, jitter_previous) == 24 && offsetof(TaaPush, has_history) == 32);

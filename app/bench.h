@@ -22,6 +22,12 @@ struct BenchOptions {
   std::string method = "svgf";  // --stage filter
 };
 
+// The median of a non-empty set of measurements (the upper one of the middle two for an even count).
+inline double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + ptrdiff_t(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
 // Median wall time in milliseconds of `runs` calls of fn, after `warmup` untimed calls.
 template <class Fn>
 double median_ms(int warmup, int runs, Fn&& fn) {
@@ -32,8 +38,7 @@ double median_ms(int warmup, int runs, Fn&& fn) {
     fn();
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::nth_element(ms.begin(), ms.begin() + ptrdiff_t(ms.size() / 2), ms.end());
-  return ms[ms.size() / 2];
+  return median(ms);
 }
 
 // "all" or a comma-separated list of scene names.

@@ -33,13 +33,12 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     }
     std::printf("%s on %s at %dx%d, %d threads: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), o.runs);
-    for (auto& [pass, ms] : times) {
-      std::nth_element(ms.begin(), ms.begin() + ptrdiff_t(ms.size() / 2), ms.end());
-      const double median = ms[ms.size() / 2];
-      std::printf("  %-10s %10.1f\n", pass.c_str(), median);
+    for (const auto& [pass, ms] : times) {
+      const double median_ms = median(ms);
+      std::printf("  %-10s %10.1f\n", pass.c_str(), median_ms);
       if (csv)
         *csv << "filter:" << o.method << ',' << name << ',' << size.width << ',' << size.height << ',' << thread_count()
-             << ",ms_" << pass << ',' << median << '\n';
+             << ",ms_" << pass << ',' << median_ms << '\n';
     }
   }
 }

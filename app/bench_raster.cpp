@@ -3,6 +3,7 @@
 #include "app/bench.h"
 #include "core/parallel.h"
 #include "raster/backproject.h"
+#include "raster/gbuffer_frame.h"
 #include "raster/gbuffer.h"
 #include "raster/view.h"
 #include "raster/visibility.h"
@@ -18,11 +19,9 @@ void bench_raster(const BenchOptions& o, const Size size, std::ostream* csv) {
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
     // Mid-sequence of the first second, so animated scenes are caught moving.
-    const int frame = int(scene.fps / 2);
-    const ScenePose pose = scene.pose(scene.time_of_frame(frame));
-    const ScenePose prev = scene.pose(scene.time_of_frame(frame - 1));
-    const View view = make_view(scene, pose, size.width, size.height);
-    const View prev_view = make_view(scene, prev, size.width, size.height);
+    const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
+    const ScenePose& pose = g.pose;
+    const View& view = g.view;
     // Buffers are allocated once and reused, as a renderer does frame after frame; a fresh 720p G-buffer
     // costs more in page faults than the rasterization itself.
     VisibilityBuffer vis(size.width, size.height);
@@ -35,7 +34,7 @@ void bench_raster(const BenchOptions& o, const Size size, std::ostream* csv) {
       rasterize_into(scene, pose, view, vis);
       resolve_gbuffer_into(scene, pose, view, vis, gbuffer);
     });
-    const double mv_ms = median_ms(o.warmup, o.runs, [&] { backproject_motion(scene, prev, prev_view, vis); });
+    const double mv_ms = median_ms(o.warmup, o.runs, [&] { backproject_motion(scene, g.prev_pose, g.prev_view, vis); });
     std::printf("%-10s %4dx%-4d %12.2f %12.2f %12.2f %12.2f\n", name.c_str(), size.width, size.height, vis_ms, gb_ms,
                 both_ms, mv_ms);
     if (csv) {

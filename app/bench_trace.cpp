@@ -69,8 +69,7 @@ void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
       stats = trace_layers(scene, g, settings, frame);
       loop_seconds.push_back(stats.seconds);
     });
-    std::nth_element(loop_seconds.begin(), loop_seconds.begin() + ptrdiff_t(loop_seconds.size() / 2), loop_seconds.end());
-    const double loop_ms = 1e3 * loop_seconds[loop_seconds.size() / 2];
+    const double loop_ms = 1e3 * median(loop_seconds);
 
     const EmbreeScene embree(scene, g.pose);
     const LightSet lights(scene, g.pose);

@@ -1,9 +1,9 @@
 // rtdr eval: every method on one scene against reference frames; metrics.csv, the three charts and a
 // side-by-side strip in --out. What is measured on which images: eval/experiment.h.
 #include "app/commands.h"
-#include "core/color.h"
+#include "app/preview.h"
+#include "app/sequence.h"
 #include "core/error.h"
-#include "core/png_io.h"
 #include "core/progress.h"
 #include "eval/experiment.h"
 #include "filters/method.h"
@@ -48,14 +48,11 @@ std::vector<MethodSpec> method_specs(const EvalOptions& o) {
 // The last frame of every method side by side, left to right in the order printed.
 void write_strip(const std::string& path, const std::vector<std::pair<std::string, RgbPlane>>& images) {
   const int w = images.front().second.width, h = images.front().second.height, n = int(images.size());
-  std::vector<uint8_t> rgb(size_t(w) * size_t(n) * size_t(h) * 3);
+  RgbPlane strip(w * n, h);
   for (int k = 0; k < n; ++k)
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c)
-          rgb[(size_t(y) * size_t(w * n) + size_t(k * w + x)) * 3 + size_t(c)] =
-              to_byte(srgb_encode(images[size_t(k)].second.at(x, y)[c]));
-  write_png(path, w * n, h, rgb);
+      for (int x = 0; x < w; ++x) strip.at(k * w + x, y) = images[size_t(k)].second.at(x, y);
+  write_display_png(path, strip);
 }
 
 void run_eval_command(const EvalOptions& o) {
@@ -71,9 +68,7 @@ void run_eval_command(const EvalOptions& o) {
   config.ref_spp = o.ref_spp;
   config.seed = o.seed;
   config.cache_dir = o.cache;
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (!std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is not a directory that can be created");
+  make_output_dir(o.out);
 
   EvalResult result;
   {

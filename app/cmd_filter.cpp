@@ -1,12 +1,11 @@
 // rtdr filter: runs a denoising method over a rendered sequence and writes the filtered frames.
 // rtdr probe:  runs it up to one frame, then prints every term of one pass at one pixel.
 #include "app/commands.h"
+#include "app/preview.h"
 #include "app/sequence.h"
 #include "core/atomic_file.h"
-#include "core/color.h"
 #include "core/error.h"
 #include "core/exr_io.h"
-#include "core/png_io.h"
 #include "filters/image.h"
 #include "filters/method.h"
 
@@ -33,26 +32,10 @@ struct FilterOptions {
   SvgfParams params;
 };
 
-std::string output_file(const std::string& dir, int frame, const char* ext) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
-  return (std::filesystem::path(dir) / name).string();
-}
-
-void write_display_png(const std::string& path, const Frame& out) {
-  const RgbPlane display = rgb_plane(out, "display");
-  std::vector<uint8_t> rgb(display.data.size() * 3);
-  for (size_t i = 0; i < display.data.size(); ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = to_byte(srgb_encode(display.data[i][c]));
-  write_png(path, display.width, display.height, rgb);
-}
-
 void run_filter(const FilterOptions& o) {
   const std::unique_ptr<Method> method = make_method(o.method, o.params);
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (!std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is not a directory that can be created");
+  make_output_dir(o.out);
 
   // Every input is read and checked before anything is written, so bad input leaves no output at all.
   SequenceShape shape;
@@ -66,11 +49,11 @@ void run_filter(const FilterOptions& o) {
     Frame out = method->filter(in, o.dump ? &dump : nullptr);
     if (o.dump)
       for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
-    write_exr(output_file(o.out, f.index, "exr"), out);
-    write_display_png(output_file(o.out, f.index, "png"), out);
+    write_exr(frame_path(o.out, f.index, "exr"), out);
+    write_display_png(frame_path(o.out, f.index, "png"), rgb_plane(out, "display"));
     double total = 0.0;
     for (const auto& [pass, ms] : method->pass_times()) total += ms;
-    std::printf("frame %d  %.1f ms  -> %s\n", f.index, total, output_file(o.out, f.index, "exr").c_str());
+    std::printf("frame %d  %.1f ms  -> %s\n", f.index, total, frame_path(o.out, f.index, "exr").c_str());
   }
 }
 

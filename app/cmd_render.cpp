@@ -2,6 +2,7 @@
 // plus a PNG preview. --spp N > 1 renders reference frames.
 #include "app/commands.h"
 #include "app/preview.h"
+#include "app/sequence.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
@@ -25,19 +26,6 @@ struct RenderOptions {
   RenderSettings settings;
 };
 
-std::string frame_file(const std::string& dir, int frame, const char* ext) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
-  return (std::filesystem::path(dir) / name).string();
-}
-
-void make_output_dir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw Error("--out '" + dir + "' is not a directory that can be created (" + ec.message() + ")");
-}
-
 void run_render(const RenderOptions& o) {
   // Validate every argument before doing any work, so bad input never leaves partial output.
   const Size size = parse_size(o.size);
@@ -56,10 +44,10 @@ void run_render(const RenderOptions& o) {
     } else {
       frame = render_frame(scene, f, size.width, size.height, o.settings, &stats);
     }
-    write_exr(frame_file(o.out, f, "exr"), frame);
-    write_preview_png(frame_file(o.out, f, "png"), frame);
+    write_exr(frame_path(o.out, f, "exr"), frame);
+    write_preview_png(frame_path(o.out, f, "png"), frame);
     std::printf("frame %d  t = %.4f s  %.2f Mrays/s  -> %s\n", f, scene.time_of_frame(f), 1e-6 * double(stats.rays) / stats.seconds,
-                frame_file(o.out, f, "exr").c_str());
+                frame_path(o.out, f, "exr").c_str());
     total.rays += stats.rays;
     total.seconds += stats.seconds;
   }

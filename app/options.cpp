@@ -1,6 +1,7 @@
 // Parsing of the option values shared by several subcommands.
 #include "app/commands.h"
 #include "core/error.h"
+#include "raster/visibility.h"  // kMaxImageSize: the rasterizer's limit
 
 #include <charconv>
 
@@ -22,8 +23,8 @@ Size parse_size(const std::string& text) {
   if (x == std::string::npos || !parse_int(std::string_view(text).substr(0, x), s.width) ||
       !parse_int(std::string_view(text).substr(x + 1), s.height))
     throw Error("--size '" + text + "' is not WIDTHxHEIGHT, e.g. 1280x720");
-  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-    throw Error("--size '" + text + "': width and height must be between 1 and 16384");
+  if (s.width < 1 || s.height < 1 || s.width > kMaxImageSize || s.height > kMaxImageSize)
+    throw Error("--size '" + text + "': width and height must be between 1 and " + std::to_string(kMaxImageSize));
   return s;
 }
 

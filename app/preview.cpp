@@ -88,4 +88,11 @@ void write_preview_png(const std::string& path, const Frame& frame) {
   write_png(path, mosaic_w, mosaic_h, rgb);
 }
 
+void write_display_png(const std::string& path, const RgbPlane& display) {
+  std::vector<uint8_t> rgb(display.data.size() * 3);
+  for (size_t i = 0; i < display.data.size(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = to_byte(srgb_encode(display.data[i][c]));
+  write_png(path, display.width, display.height, rgb);
+}
+
 }  // namespace rtdr

@@ -5,9 +5,23 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <filesystem>
 
 namespace rtdr {
+
+std::string frame_path(const std::string& dir, int index, const char* ext) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", index, ext);
+  return (std::filesystem::path(dir) / name).string();
+}
+
+void make_output_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw Error("--out '" + dir + "' is not a directory that can be created (" + ec.message() + ")");
+}
 
 std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::string& range) {
   std::error_code ec;
@@ -36,12 +50,11 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
 
 Frame read_filter_input(const std::string& path, SequenceShape& shape) {
   Frame frame = read_exr(path);
-  if (shape.first_file.empty()) {
-    shape = {frame.width(), frame.height(), path};
-  } else if (frame.width() != shape.width || frame.height() != shape.height) {
-    throw Error(path + " is " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + " but " +
-                shape.first_file + " is " + std::to_string(shape.width) + "x" + std::to_string(shape.height) +
-                "; every frame of a sequence must have one size");
+  if (shape.first.source.empty()) {
+    shape.first = Frame(frame.width(), frame.height());
+    shape.first.source = path;
+  } else {
+    require_same_size(shape.first, frame);  // names both files
   }
   // Every float layer a method reads must be finite; ids are checked by their own readers.
   require_finite(frame, {"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B", "albedo.R",

@@ -20,10 +20,16 @@ struct SequenceFrame {
 // DIR is missing, holds no frame_NNNN.exr, or lacks a frame of the range.
 std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::string& range);
 
-// The size of a sequence and the file that set it: every frame must match the first.
+// DIR/frame_NNNN.<ext>, the name every command reads and writes frames under.
+std::string frame_path(const std::string& dir, int index, const char* ext);
+
+// Creates an --out directory (and its parents); throws rtdr::Error when that is impossible.
+void make_output_dir(const std::string& dir);
+
+// The size of a sequence and the file that set it: every frame must match the first. `first` holds no planes,
+// only the first frame's size and source, for core/exr_io.h's require_same_size.
 struct SequenceShape {
-  int width = 0, height = 0;
-  std::string first_file;
+  Frame first;
 };
 
 // Reads one frame and checks it as filter input: its layers are finite, and its size is `shape`'s (the first

@@ -5,6 +5,7 @@
 // visibility buffer. The scene is rebuilt per pose (our scenes are small); the device is shared.
 #pragma once
 
+#include "core/frame.h"
 #include "raster/view.h"
 #include "scenes/scene.h"
 
@@ -22,8 +23,8 @@ RTCDevice embree_device();
 inline constexpr float kRayInfinity = 1e30f;
 
 struct Hit {
-  uint32_t instance = 0xFFFFFFFFu;  // kInvalidId when the ray escapes
-  uint32_t triangle = 0xFFFFFFFFu;
+  uint32_t instance = kInvalidId;  // when the ray escapes
+  uint32_t triangle = kInvalidId;
   glm::vec2 bary{0.0f};             // Embree's (u, v): weights of vertices 1 and 2
   float t = 0.0f;                   // distance along the (normalised) ray
 };

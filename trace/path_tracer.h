@@ -42,11 +42,11 @@ struct TraceOptions {
 // Where the path went, for the motion vectors of [TRMV21 Sec. 4]. kInvalidId instances mean "none".
 struct PathRecord {
   glm::vec3 light_position{0.0f};   // the primary vertex's light sample
-  uint32_t light_instance = 0xFFFFFFFFu;
+  uint32_t light_instance = kInvalidId;
   glm::vec3 blocker_position{0.0f};  // the nearest occluder of that shadow ray, when it is blocked
-  uint32_t blocker_instance = 0xFFFFFFFFu;
+  uint32_t blocker_instance = kInvalidId;
   glm::vec3 secondary_position{0.0f};  // the surface the primary BSDF ray hit
-  uint32_t secondary_instance = 0xFFFFFFFFu;
+  uint32_t secondary_instance = kInvalidId;
   glm::vec3 secondary_direction{0.0f};  // the primary BSDF ray's direction (unit)
 };
 

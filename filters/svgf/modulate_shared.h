@@ -1,6 +1,7 @@
-// What remodulation's C++ (modulate.cpp, gpu/modulate_gpu.cpp) and GLSL (modulate.comp) share, written once:
-// the workgroup size, the push-constant block and (from core/demodulation_shared.h) the demodulation floor. Both compilers include this file;
-// GLSL has the C preprocessor, and the #ifdef __cplusplus block maps GLSL's `uint` to C++.
+// Remodulation [SVGF17 Sec. 3]: what its C++ (modulate.cpp, gpu/modulate_gpu.cpp) and GLSL (modulate.comp)
+// share, written once: the workgroup size, the push-constant block and (from core/demodulation_shared.h) the
+// demodulation floor. Both compilers include this file; GLSL has the C preprocessor, and core/shader_shared.h
+// maps the types.
 //
 // Buffer layout of the port (std430, set 0): bindings 0-3 are direct, indirect, albedo and emission, binding 4
 // is the colour written. Each is a float array with 3 floats per pixel, R G B, pixel (x, y) at floats

@@ -1,7 +1,7 @@
-// What temporal accumulation's C++ (gpu/temporal_gpu.cpp) and GLSL (temporal.comp) share, written once: the
-// workgroup size, the "no surface" id and the push-constant block. The luminance weights come from
-// core/color_shared.h (shared with core/color.h's luminance()). Both compilers include this file; GLSL has the
-// C preprocessor, and the #ifdef __cplusplus block maps the types.
+// Temporal accumulation [SVGF17 Sec. 4.1, 4.2]: what its C++ (gpu/temporal_gpu.cpp) and GLSL (temporal.comp)
+// share, written once: the workgroup size, the "no surface" id and the push-constant block. The luminance
+// weights come from core/color_shared.h (shared with core/color.h's luminance()). Both compilers include this
+// file; GLSL has the C preprocessor, and core/shader_shared.h maps the types.
 //
 // Buffer layout of the port (std430, set 0), pixel (x, y) at element y * width + x (the history's planes:
 // y * prev_width + x), row-major, exactly the planes' data; vec2 planes are 2 floats, RGB planes 3 floats:

@@ -1,6 +1,6 @@
-// What TAA's C++ (taa.cpp, gpu/taa_gpu.cpp) and GLSL (taa.comp) share, written once: the workgroup size and the
-// push-constant block. Both compilers include this file; GLSL has the C preprocessor, and the #ifdef __cplusplus
-// block maps GLSL's `uint` and `vec2` to C++.
+// TAA [Karis14; the last pass of SVGF17 Sec. 3]: what its C++ (taa.cpp, gpu/taa_gpu.cpp) and GLSL (taa.comp)
+// share, written once: the workgroup size and the push-constant block. Both compilers include this file; GLSL
+// has the C preprocessor, and core/shader_shared.h maps the types.
 //
 // Buffer layout of the port (std430, set 0): binding 0 is the current colour, binding 1 the history (a 1-float
 // placeholder when has_history is 0), binding 2 the motion, binding 3 the output. Colours are float arrays with

@@ -9,37 +9,85 @@
 
 namespace rtdr {
 
-GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats) : device_(context.device()), floats_(floats) {
-  if (floats == 0) throw Error("GpuBuffer: a buffer needs at least one float");
-  VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  info.size = floats * sizeof(float);
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  vk_check(vkCreateBuffer(device_, &info, nullptr, &buffer_), "vkCreateBuffer");
-  VkMemoryRequirements needs;
-  vkGetBufferMemoryRequirements(device_, buffer_, &needs);
-  VkMemoryAllocateInfo allocate{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  allocate.allocationSize = needs.size;
+namespace {
+
+struct FormatInfo {
+  VkFormat format;
+  size_t floats;  // 32-bit components per texel
+};
+
+FormatInfo format_info(TexelFormat format) {
+  switch (format) {
+    case TexelFormat::R32F: return {VK_FORMAT_R32_SFLOAT, 1};
+    case TexelFormat::RG32F: return {VK_FORMAT_R32G32_SFLOAT, 2};
+    case TexelFormat::RGBA32F: return {VK_FORMAT_R32G32B32A32_SFLOAT, 4};
+    case TexelFormat::R32UI: return {VK_FORMAT_R32_UINT, 1};
+    case TexelFormat::None: break;
+  }
+  return {VK_FORMAT_UNDEFINED, 1};
+}
+
+// Device-local memory the host can map where the device has it (lavapipe: all of it; GPUs with a resizable BAR),
+// else plain host memory the device reads over the bus.
+uint32_t mappable_memory_type(const VulkanContext& context, uint32_t type_bits) {
+  const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   try {
+    return context.memory_type(type_bits, mapped | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  } catch (const Error&) {
+    return context.memory_type(type_bits, mapped);
+  }
+}
+
+}  // namespace
+
+GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format)
+    : device_(context.device()), floats_(floats) {
+  if (floats == 0) throw Error("GpuBuffer: a buffer needs at least one float");
+  const FormatInfo texel = format_info(format);
+  if (floats % texel.floats != 0)
+    throw Error("GpuBuffer: " + std::to_string(floats) + " floats are not whole texels of " +
+                std::to_string(texel.floats));
+  try {
+    VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = floats * sizeof(float);
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    vk_check(vkCreateBuffer(device_, &info, nullptr, &buffer_), "vkCreateBuffer");
+    VkMemoryRequirements needs;
+    vkGetBufferMemoryRequirements(device_, buffer_, &needs);
+    VkMemoryAllocateInfo allocate{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    allocate.allocationSize = needs.size;
     // Host-coherent: no flush after upload() nor invalidate before download().
-    allocate.memoryTypeIndex = context.memory_type(
-        needs.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    allocate.memoryTypeIndex = mappable_memory_type(context, needs.memoryTypeBits);
     vk_check(vkAllocateMemory(device_, &allocate, nullptr, &memory_), "vkAllocateMemory");
     vk_check(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
     void* mapped = nullptr;
     vk_check(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
     mapped_ = static_cast<float*>(mapped);
+    if (texel.format != VK_FORMAT_UNDEFINED) {
+      VkBufferViewCreateInfo view{.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+      view.buffer = buffer_;
+      view.format = texel.format;
+      view.range = VK_WHOLE_SIZE;
+      vk_check(vkCreateBufferView(device_, &view, nullptr, &view_), "vkCreateBufferView");
+    }
   } catch (...) {
-    if (memory_) vkFreeMemory(device_, memory_, nullptr);
-    vkDestroyBuffer(device_, buffer_, nullptr);
+    release();
     throw;
   }
 }
 
-GpuBuffer::~GpuBuffer() {
-  vkUnmapMemory(device_, memory_);
+GpuBuffer::~GpuBuffer() { release(); }
+
+void GpuBuffer::release() {
+  vkDestroyBufferView(device_, view_, nullptr);  // destroying VK_NULL_HANDLE is a no-op
+  if (mapped_) vkUnmapMemory(device_, memory_);
   vkFreeMemory(device_, memory_, nullptr);
   vkDestroyBuffer(device_, buffer_, nullptr);
+  view_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+  memory_ = VK_NULL_HANDLE;
+  buffer_ = VK_NULL_HANDLE;
 }
 
 void GpuBuffer::upload(std::span<const float> values) {
@@ -64,9 +112,17 @@ std::vector<uint32_t> load_shader(const std::string& stem) {
   return words;
 }
 
+namespace {
+
+VkDescriptorType descriptor_type(Binding binding) {
+  return binding == Binding::Texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+}  // namespace
+
 ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv,
-                                 uint32_t buffer_count, uint32_t push_bytes)
-    : context_(context), buffer_count_(buffer_count), push_bytes_(push_bytes) {
+                                 std::vector<Binding> bindings, uint32_t push_bytes)
+    : context_(context), bindings_(std::move(bindings)), push_bytes_(push_bytes) {
   VkDevice device = context.device();
   try {
     VkShaderModuleCreateInfo module_info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -74,13 +130,13 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint3
     module_info.pCode = spirv.data();
     vk_check(vkCreateShaderModule(device, &module_info, nullptr, &module_), "vkCreateShaderModule");
 
-    // Set 0: storage buffers at bindings 0..buffer_count-1, all read or written by the compute stage.
-    std::vector<VkDescriptorSetLayoutBinding> bindings(buffer_count);
-    for (uint32_t i = 0; i < buffer_count; ++i)
-      bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    // Set 0: binding i of the kind bindings_[i], used by the compute stage.
+    std::vector<VkDescriptorSetLayoutBinding> layout_bindings(bindings_.size());
+    for (uint32_t i = 0; i < bindings_.size(); ++i)
+      layout_bindings[i] = {i, descriptor_type(bindings_[i]), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
     VkDescriptorSetLayoutCreateInfo set_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    set_info.bindingCount = buffer_count;
-    set_info.pBindings = bindings.data();
+    set_info.bindingCount = uint32_t(layout_bindings.size());
+    set_info.pBindings = layout_bindings.data();
     vk_check(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
 
     const VkPushConstantRange push_range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
@@ -105,6 +161,10 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint3
   }
 }
 
+ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv, uint32_t buffer_count,
+                                 uint32_t push_bytes)
+    : ComputePipeline(context, spirv, std::vector<Binding>(buffer_count, Binding::Storage), push_bytes) {}
+
 ComputePipeline::~ComputePipeline() { release(); }
 
 void ComputePipeline::release() {
@@ -119,108 +179,168 @@ void ComputePipeline::release() {
   module_ = VK_NULL_HANDLE;
 }
 
+void ComputePipeline::dispatch(const std::vector<const GpuBuffer*>& buffers, const void* push, uint32_t groups_x,
+                               uint32_t groups_y, double* ms) {
+  ComputeBatch batch(context_, 1);
+  batch.dispatch(*this, buffers, push, groups_x, groups_y, "dispatch");
+  batch.run();
+  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+}
+
 namespace {
 
-// The objects one dispatch creates, destroyed on every path out of dispatch().
-struct DispatchObjects {
-  VkDevice device;
-  VkCommandPool command_pool;
-  VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
-  VkQueryPool query_pool = VK_NULL_HANDLE;
-  VkCommandBuffer commands = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
-  ~DispatchObjects() {
-    vkDestroyFence(device, fence, nullptr);
-    if (commands) vkFreeCommandBuffers(device, command_pool, 1, &commands);
-    vkDestroyQueryPool(device, query_pool, nullptr);
-    vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
-  }
-};
+// Every binding kind a batch's descriptor pool serves, and how many of each one dispatch may use at most.
+constexpr uint32_t kMaxBindingsPerKind = 32;
 
 }  // namespace
 
-void ComputePipeline::dispatch(const std::vector<const GpuBuffer*>& buffers, const void* push, uint32_t groups_x,
-                               uint32_t groups_y, double* ms) {
-  if (buffers.size() != buffer_count_)
-    throw Error("ComputePipeline::dispatch: " + std::to_string(buffers.size()) + " buffers for " +
-                std::to_string(buffer_count_) + " bindings");
-  VkDevice device = context_.device();
-  DispatchObjects objects{device, context_.command_pool()};
+ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_dispatches)
+    : context_(context), max_dispatches_(max_dispatches) {
+  VkDevice device = context.device();
+  try {
+    // One descriptor set per dispatch, all freed at once when the next batch begins.
+    const VkDescriptorPoolSize sizes[2] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kMaxBindingsPerKind * max_dispatches},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxBindingsPerKind * max_dispatches}};
+    VkDescriptorPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool_info.maxSets = max_dispatches;
+    pool_info.poolSizeCount = 2;
+    pool_info.pPoolSizes = sizes;
+    vk_check(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
+    if (context.has_timestamps()) {
+      // Two timestamps per dispatch: before and after it.
+      VkQueryPoolCreateInfo query_info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      query_info.queryCount = 2 * max_dispatches;
+      vk_check(vkCreateQueryPool(device, &query_info, nullptr, &query_pool_), "vkCreateQueryPool");
+    }
+    VkCommandBufferAllocateInfo command_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    command_info.commandPool = context.command_pool();
+    command_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    command_info.commandBufferCount = 1;
+    vk_check(vkAllocateCommandBuffers(device, &command_info, &commands_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence_info{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vk_check(vkCreateFence(device, &fence_info, nullptr, &fence_), "vkCreateFence");
+    begin();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
 
-  // One descriptor set: buffers[i] at binding i, whole buffer.
-  const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer_count_};
-  VkDescriptorPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  vk_check(vkCreateDescriptorPool(device, &pool_info, nullptr, &objects.descriptor_pool), "vkCreateDescriptorPool");
+ComputeBatch::~ComputeBatch() { release(); }
+
+void ComputeBatch::release() {
+  VkDevice device = context_.device();
+  vkDestroyFence(device, fence_, nullptr);
+  if (commands_) vkFreeCommandBuffers(device, context_.command_pool(), 1, &commands_);
+  vkDestroyQueryPool(device, query_pool_, nullptr);
+  vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+  fence_ = VK_NULL_HANDLE;
+  commands_ = VK_NULL_HANDLE;
+  query_pool_ = VK_NULL_HANDLE;
+  descriptor_pool_ = VK_NULL_HANDLE;
+}
+
+void ComputeBatch::begin() {
+  VkDevice device = context_.device();
+  vk_check(vkResetDescriptorPool(device, descriptor_pool_, 0), "vkResetDescriptorPool");
+  vk_check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo begin_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin_info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vk_check(vkBeginCommandBuffer(commands_, &begin_info), "vkBeginCommandBuffer");
+  if (query_pool_) vkCmdResetQueryPool(commands_, query_pool_, 0, 2 * max_dispatches_);
+  labels_.clear();
+}
+
+void ComputeBatch::dispatch(const ComputePipeline& pipeline, const std::vector<const GpuBuffer*>& buffers,
+                            const void* push, uint32_t groups_x, uint32_t groups_y, const std::string& label) {
+  const std::vector<Binding>& kinds = pipeline.bindings();
+  if (buffers.size() != kinds.size())
+    throw Error("ComputeBatch::dispatch (" + label + "): " + std::to_string(buffers.size()) + " buffers for " +
+                std::to_string(kinds.size()) + " bindings");
+  if (labels_.size() == max_dispatches_)
+    throw Error("ComputeBatch::dispatch (" + label + "): more than " + std::to_string(max_dispatches_) +
+                " dispatches in one batch");
+  VkDevice device = context_.device();
+
+  // One descriptor set: buffers[i] at binding i, as a texel-buffer view or as a whole storage buffer.
   VkDescriptorSetAllocateInfo set_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  set_info.descriptorPool = objects.descriptor_pool;
+  set_info.descriptorPool = descriptor_pool_;
   set_info.descriptorSetCount = 1;
-  set_info.pSetLayouts = &set_layout_;
+  const VkDescriptorSetLayout set_layout = pipeline.set_layout();
+  set_info.pSetLayouts = &set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
   vk_check(vkAllocateDescriptorSets(device, &set_info, &set), "vkAllocateDescriptorSets");
-  std::vector<VkDescriptorBufferInfo> infos(buffer_count_);
-  std::vector<VkWriteDescriptorSet> writes(buffer_count_);
-  for (uint32_t i = 0; i < buffer_count_; ++i) {
-    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+  std::vector<VkDescriptorBufferInfo> infos(kinds.size());
+  std::vector<VkBufferView> views(kinds.size());
+  std::vector<VkWriteDescriptorSet> writes(kinds.size());
+  for (size_t i = 0; i < kinds.size(); ++i) {
     writes[i] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = set;
-    writes[i].dstBinding = i;
+    writes[i].dstBinding = uint32_t(i);
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
+    writes[i].descriptorType = descriptor_type(kinds[i]);
+    if (kinds[i] == Binding::Texel) {
+      views[i] = buffers[i]->view();
+      if (!views[i])
+        throw Error("ComputeBatch::dispatch (" + label + "): binding " + std::to_string(i) +
+                    " is a texel buffer but its buffer has no texel format");
+      writes[i].pTexelBufferView = &views[i];
+    } else {
+      infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+      writes[i].pBufferInfo = &infos[i];
+    }
   }
-  vkUpdateDescriptorSets(device, buffer_count_, writes.data(), 0, nullptr);
+  vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 
-  const bool timed = context_.has_timestamps();
-  if (timed) {
-    VkQueryPoolCreateInfo query_info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    query_info.queryCount = 2;
-    vk_check(vkCreateQueryPool(device, &query_info, nullptr, &objects.query_pool), "vkCreateQueryPool");
+  // Each dispatch reads what the dispatches before it wrote.
+  if (!labels_.empty()) {
+    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                         &barrier, 0, nullptr, 0, nullptr);
   }
-
-  VkCommandBufferAllocateInfo command_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  command_info.commandPool = objects.command_pool;
-  command_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  command_info.commandBufferCount = 1;
-  vk_check(vkAllocateCommandBuffers(device, &command_info, &objects.commands), "vkAllocateCommandBuffers");
-  VkCommandBuffer commands = objects.commands;
-  VkCommandBufferBeginInfo begin{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vk_check(vkBeginCommandBuffer(commands, &begin), "vkBeginCommandBuffer");
-  if (timed) vkCmdResetQueryPool(commands, objects.query_pool, 0, 2);
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-  if (push_bytes_ > 0) vkCmdPushConstants(commands, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push);
+  const uint32_t query = 2 * uint32_t(labels_.size());
+  vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  vkCmdBindDescriptorSets(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+  if (pipeline.push_bytes() > 0)
+    vkCmdPushConstants(commands_, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.push_bytes(), push);
   // The dispatch between two timestamps: the first once earlier work is done, the second when it is.
-  if (timed) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, objects.query_pool, 0);
-  vkCmdDispatch(commands, groups_x, groups_y, 1);
-  if (timed) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, objects.query_pool, 1);
-  // Make the shader's writes visible to the host's reads (the buffers are host-coherent).
+  if (query_pool_) vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, query_pool_, query);
+  vkCmdDispatch(commands_, groups_x, groups_y, 1);
+  if (query_pool_) vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, query_pool_, query + 1);
+  labels_.push_back(label);
+}
+
+void ComputeBatch::run() {
+  VkDevice device = context_.device();
+  // Make the shaders' writes visible to the host's reads (the buffers are host-coherent).
   VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+  vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
                        nullptr, 0, nullptr);
-  vk_check(vkEndCommandBuffer(commands), "vkEndCommandBuffer");
-
-  VkFenceCreateInfo fence_info{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  vk_check(vkCreateFence(device, &fence_info, nullptr, &objects.fence), "vkCreateFence");
+  vk_check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
   VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &commands;
-  vk_check(vkQueueSubmit(context_.queue(), 1, &submit, objects.fence), "vkQueueSubmit");
-  vk_check(vkWaitForFences(device, 1, &objects.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  submit.pCommandBuffers = &commands_;
+  vk_check(vkResetFences(device, 1, &fence_), "vkResetFences");
+  vk_check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+  vk_check(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 
-  if (timed && ms) {
-    uint64_t ticks[2] = {0, 0};
-    vk_check(vkGetQueryPoolResults(device, objects.query_pool, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+  times_.clear();
+  if (query_pool_ && !labels_.empty()) {
+    std::vector<uint64_t> ticks(2 * labels_.size());
+    vk_check(vkGetQueryPoolResults(device, query_pool_, 0, uint32_t(ticks.size()), ticks.size() * sizeof(uint64_t),
+                                   ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
              "vkGetQueryPoolResults");
-    *ms = double(ticks[1] - ticks[0]) * double(context_.timestamp_period_ns()) * 1e-6;
+    for (size_t i = 0; i < labels_.size(); ++i)
+      times_.emplace_back(labels_[i],
+                          double(ticks[2 * i + 1] - ticks[2 * i]) * double(context_.timestamp_period_ns()) * 1e-6);
   }
+  begin();
 }
 
 }  // namespace rtdr

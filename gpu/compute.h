@@ -1,10 +1,20 @@
-// Buffers, pipelines and timed dispatches: all a port needs to run one compute shader on planes.
+// Buffers, pipelines and timed dispatches: all a port needs to run compute shaders on planes.
 //
-// A GpuBuffer is a host-visible, host-coherent storage buffer, mapped for its whole life: upload() and
-// download() are plain copies. A ComputePipeline is one shader (SPIR-V compiled at build time into
-// RTDR_SHADER_DIR, see gpu/CMakeLists.txt) whose set 0 holds `buffer_count` storage buffers at bindings
-// 0..buffer_count-1, plus one push-constant block. dispatch() records, submits and waits, and times the
-// dispatch alone with two timestamp queries.
+// A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent, device-local where the
+// device has such memory): upload() and download() are plain copies. Given a texel format it also has a buffer
+// view, so shaders can read it as a `samplerBuffer` / `usamplerBuffer` and texelFetch() whole texels.
+//
+// A ComputePipeline is one shader (SPIR-V compiled at build time into RTDR_SHADER_DIR, see gpu/CMakeLists.txt)
+// whose set 0 holds one binding per entry of its Binding list, in order, plus one push-constant block:
+//   Binding::Texel    a uniform texel buffer, read with texelFetch (the buffer needs a texel format);
+//   Binding::Storage  a storage buffer, read or written as an std430 array.
+// Why texel buffers for inputs: on lavapipe a storage-buffer load runs one lane at a time and one 32-bit
+// component at a time, while a texel fetch gathers a whole texel for all lanes at once (3x faster measured on
+// the remodulation shader, docs/performance.md); on GPUs texel fetches go through the texture cache.
+//
+// A ComputeBatch records several dispatches into one command buffer, with a barrier between consecutive ones (each
+// dispatch sees the previous ones' writes), submits them once and waits; each dispatch is timed by timestamp
+// queries. ComputePipeline::dispatch is the batch of one.
 #pragma once
 
 #include "gpu/vulkan_context.h"
@@ -13,40 +23,65 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtdr {
 
+// The texel formats a GpuBuffer can be viewed with: 1, 2 or 4 floats, or 1 uint, per texel.
+enum class TexelFormat { None, R32F, RG32F, RGBA32F, R32UI };
+
 class GpuBuffer {
  public:
-  GpuBuffer(VulkanContext& context, size_t floats);  // room for `floats` floats (at least 1)
+  // Room for `floats` floats (at least 1); with a format, a view of the whole buffer in that format (`floats`
+  // must then be a multiple of the texel's size).
+  GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format = TexelFormat::None);
   ~GpuBuffer();
   GpuBuffer(const GpuBuffer&) = delete;
   GpuBuffer& operator=(const GpuBuffer&) = delete;
 
   size_t floats() const { return floats_; }
   VkBuffer handle() const { return buffer_; }
+  VkBufferView view() const { return view_; }  // VK_NULL_HANDLE without a format
   void upload(std::span<const float> values);  // values.size() must equal floats()
   std::vector<float> download() const;
+  // The mapped memory itself, for packing inputs in place and reading results without a copy. Valid for the
+  // buffer's life; the device must not be using the buffer meanwhile.
+  float* data() { return mapped_; }
+  const float* data() const { return mapped_; }
 
  private:
+  void release();
+
   VkDevice device_;
   size_t floats_;
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkBufferView view_ = VK_NULL_HANDLE;
   float* mapped_ = nullptr;
 };
 
 // The SPIR-V of the shader with file stem `stem` (modulate -> RTDR_SHADER_DIR/modulate.spv).
 std::vector<uint32_t> load_shader(const std::string& stem);
 
+enum class Binding { Texel, Storage };
+
 class ComputePipeline {
  public:
+  ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv, std::vector<Binding> bindings,
+                  uint32_t push_bytes);
+  // A shader whose `buffer_count` bindings are all storage buffers.
   ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv, uint32_t buffer_count,
                   uint32_t push_bytes);
   ~ComputePipeline();
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  const std::vector<Binding>& bindings() const { return bindings_; }
+  uint32_t push_bytes() const { return push_bytes_; }
+  VkPipeline handle() const { return pipeline_; }
+  VkPipelineLayout layout() const { return layout_; }
+  VkDescriptorSetLayout set_layout() const { return set_layout_; }
 
   // Runs groups_x * groups_y workgroups with buffers[i] at binding i and `push` (push_bytes long) as the
   // push constants, and waits. Writes the dispatch's device time in milliseconds to *ms when the queue has
@@ -58,12 +93,46 @@ class ComputePipeline {
   void release();  // destroys whatever was created; the destructor and a failed constructor
 
   VulkanContext& context_;
-  uint32_t buffer_count_;
+  std::vector<Binding> bindings_;
   uint32_t push_bytes_;
   VkShaderModule module_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+// Workgroups of `group` invocations along an axis of `pixels`: enough to cover it, the last one overhanging.
+inline uint32_t group_count(uint32_t pixels, uint32_t group) { return (pixels + group - 1) / group; }
+
+class ComputeBatch {
+ public:
+  // Room for up to `max_dispatches` dispatches per run().
+  ComputeBatch(VulkanContext& context, uint32_t max_dispatches);
+  ~ComputeBatch();
+  ComputeBatch(const ComputeBatch&) = delete;
+  ComputeBatch& operator=(const ComputeBatch&) = delete;
+
+  // Records one dispatch, after every one recorded before it (a barrier orders their memory accesses). `label`
+  // names its time in times(). The buffers must outlive run().
+  void dispatch(const ComputePipeline& pipeline, const std::vector<const GpuBuffer*>& buffers, const void* push,
+                uint32_t groups_x, uint32_t groups_y, const std::string& label);
+  // Submits what was recorded, waits, and makes the writes visible to the host; then starts a new batch.
+  void run();
+  // Each dispatch of the last run(): its label and device time in milliseconds (empty without timestamps).
+  const std::vector<std::pair<std::string, double>>& times() const { return times_; }
+
+ private:
+  void begin();
+  void release();
+
+  VulkanContext& context_;
+  uint32_t max_dispatches_;
+  VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+  VkQueryPool query_pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  std::vector<std::string> labels_;
+  std::vector<std::pair<std::string, double>> times_;
 };
 
 }  // namespace rtdr

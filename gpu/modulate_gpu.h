@@ -2,7 +2,7 @@
 //
 //   in:  direct, indirect, albedo, emission (same size; throws rtdr::Error otherwise)
 //   out: colour = emission + max(albedo, 0.001) * (direct + indirect), as remodulate() (filters/svgf/modulate.h)
-// Planes travel as std430 float arrays, 3 floats per pixel (layout in filters/svgf/modulate_shared.h).
+// Planes travel as colour records (filters/svgf/planes_shared.h).
 #pragma once
 
 #include "filters/image.h"

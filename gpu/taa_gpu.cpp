@@ -2,28 +2,12 @@
 #include "gpu/taa_gpu.h"
 
 #include "core/error.h"
-#include "filters/taa/taa_shared.h"
-#include "gpu/compute.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
 
-#include <span>
 #include <string>
 
 namespace rtdr {
-
-namespace {
-
-// RgbPlane and Vec2Plane data are already the shader's layout: glm::vec3 is 3 packed floats, glm::vec2 2, pixels
-// row-major.
-static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-static_assert(sizeof(glm::vec2) == 2 * sizeof(float));
-std::span<const float> rgb_floats(const RgbPlane& plane) {
-  return {reinterpret_cast<const float*>(plane.data.data()), plane.data.size() * 3};
-}
-std::span<const float> xy_floats(const Vec2Plane& plane) {
-  return {reinterpret_cast<const float*>(plane.data.data()), plane.data.size() * 2};
-}
-
-}  // namespace
 
 RgbPlane taa_vulkan(VulkanContext& context, const RgbPlane& current, const RgbPlane& history, const Vec2Plane& motion,
                     const TaaParams& params, const TaaJitter& jitter, double* ms) {
@@ -37,34 +21,31 @@ RgbPlane taa_vulkan(VulkanContext& context, const RgbPlane& current, const RgbPl
   RgbPlane out(current.width, current.height);
   if (out.data.empty()) return out;
 
-  // Bindings 0-3 in taa.comp's order: current, history, motion, then the output. An empty history still needs a
-  // buffer at binding 1: a 1-float placeholder the shader never reads (has_history = 0).
+  // An empty history still needs a buffer at binding 1: one texel the shader never reads (has_history = 0).
   const bool has_history = history.width != 0;
-  const size_t floats = out.data.size() * 3;
-  GpuBuffer current_buffer(context, floats), history_buffer(context, has_history ? floats : 1),
-      motion_buffer(context, out.data.size() * 2), out_buffer(context, floats);
-  current_buffer.upload(rgb_floats(current));
-  if (has_history) history_buffer.upload(rgb_floats(history));
-  motion_buffer.upload(xy_floats(motion));
+  const int w = current.width, h = current.height;
+  const auto current_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             history_buffer = plane_buffer(context, history.width, history.height, TexelFormat::RGBA32F),
+             motion_buffer = plane_buffer(context, w, h, TexelFormat::RG32F),
+             out_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+  pack_rgbw(current, nullptr, *current_buffer);
+  if (has_history) pack_rgbw(history, nullptr, *history_buffer);
+  pack_vec2(motion, *motion_buffer);
 
-  ComputePipeline pipeline(context, load_shader("taa"), 4, sizeof(TaaPush));
-  const TaaPush push{.width = uint32_t(current.width),
-                     .height = uint32_t(current.height),
+  const TaaPush push{.width = uint32_t(w),
+                     .height = uint32_t(h),
                      .alpha = params.alpha,
                      .clip_history = params.clip_history ? 1u : 0u,
                      .jitter_current = jitter.current,
                      .jitter_previous = jitter.previous,
                      .has_history = has_history ? 1u : 0u,
                      .padding = 0};
-  // Enough 8x8 workgroups to cover the frame; the shader skips the overhang.
-  const uint32_t groups_x = (push.width + kTaaGroupSizeX - 1) / kTaaGroupSizeX;
-  const uint32_t groups_y = (push.height + kTaaGroupSizeY - 1) / kTaaGroupSizeY;
-  pipeline.dispatch({&current_buffer, &history_buffer, &motion_buffer, &out_buffer}, &push, groups_x, groups_y, ms);
-
-  const std::vector<float> result = out_buffer.download();
-  for (size_t i = 0; i < out.data.size(); ++i)
-    out.data[i] = glm::vec3(result[3 * i], result[3 * i + 1], result[3 * i + 2]);
-  return out;
+  SvgfShaders shaders(context);
+  ComputeBatch batch(context, 1);
+  shaders.taa(batch, *current_buffer, *history_buffer, *motion_buffer, *out_buffer, push);
+  batch.run();
+  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  return unpack_rgb(*out_buffer, w, h);
 }
 
 }  // namespace rtdr

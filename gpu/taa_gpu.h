@@ -3,8 +3,7 @@
 //   in:  current display colour, history (current's size, or empty: width 0), motion (current's size), TaaParams
 //        (validated), TaaJitter; throws rtdr::Error on a size mismatch or a parameter out of range, as taa_pass()
 //   out: the antialiased colour, as taa_pass() (filters/taa/taa.h)
-// Planes travel as std430 float arrays, 3 floats per pixel for colours, 2 for motion (layout in
-// filters/taa/taa_shared.h).
+// Planes travel as colour records and RG32F motion (filters/svgf/planes_shared.h).
 #pragma once
 
 #include "filters/image.h"

@@ -2,45 +2,15 @@
 #include "gpu/temporal_gpu.h"
 
 #include "core/error.h"
-#include "filters/svgf/temporal_shared.h"
-#include "gpu/compute.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
 
-#include <bit>
 #include <memory>
-#include <span>
 #include <string>
-#include <vector>
 
 namespace rtdr {
 
 namespace {
-
-// The planes' data is already the shader's layout: glm::vec2 / glm::vec3 are 2 / 3 packed floats, pixels
-// row-major.
-static_assert(sizeof(glm::vec2) == 2 * sizeof(float));
-static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-template <class T>
-std::vector<float> floats_of(const Plane<T>& plane) {
-  const float* first = reinterpret_cast<const float*>(plane.data.data());
-  return std::vector<float>(first, first + plane.data.size() * (sizeof(T) / sizeof(float)));
-}
-
-// GpuBuffer holds floats; the mesh ids travel bit for bit (the shader reads those bindings as uint[]).
-std::vector<float> floats_of(const UIntPlane& plane) {
-  static_assert(sizeof(uint32_t) == sizeof(float));
-  std::vector<float> bits(plane.data.size());
-  for (size_t i = 0; i < bits.size(); ++i) bits[i] = std::bit_cast<float>(uint32_t(plane.data[i]));
-  return bits;
-}
-
-// A buffer holding `values`; an empty plane (the first frame's history) gets one unread float, as a binding
-// needs a buffer.
-std::unique_ptr<GpuBuffer> input_buffer(VulkanContext& context, std::vector<float> values) {
-  if (values.empty()) values.push_back(0.0f);
-  auto buffer = std::make_unique<GpuBuffer>(context, values.size());
-  buffer->upload(values);
-  return buffer;
-}
 
 template <class P>
 bool sized(const P& p, int w, int h) {
@@ -71,45 +41,51 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   if (out.moment1.data.empty()) return out;
 
-  // Bindings 0-16 in temporal.comp's order (temporal_shared.h).
-  std::vector<std::unique_ptr<GpuBuffer>> buffers;
-  for (std::vector<float> values :
-       {floats_of(noisy), floats_of(cur.depth), floats_of(cur.depth_grad), floats_of(cur.normal),
-        floats_of(cur.mesh), floats_of(cur.motion), floats_of(prev.color), floats_of(prev.moment1),
-        floats_of(prev.moment2), floats_of(prev.length), floats_of(prev.surface.depth),
-        floats_of(prev.surface.normal), floats_of(prev.surface.mesh)})
-    buffers.push_back(input_buffer(context, std::move(values)));
-  const size_t pixels = out.moment1.data.size();
-  for (const size_t floats : {3 * pixels, pixels, pixels, pixels})
-    buffers.push_back(std::make_unique<GpuBuffer>(context, floats));
-  std::vector<const GpuBuffer*> bindings;
-  for (const auto& buffer : buffers) bindings.push_back(buffer.get());
-  if (bindings.size() != kTemporalBufferCount) throw Error("temporal_vulkan: binding count mismatch");
+  const auto texels = [&](int pw_, int ph_, TexelFormat f) { return plane_buffer(context, pw_, ph_, f); };
+  const int hw = has_history ? pw : 0, hh = has_history ? ph : 0;
+  const auto noisy_buffer = texels(w, h, TexelFormat::RGBA32F), surface = texels(w, h, TexelFormat::RGBA32F),
+             grad = texels(w, h, TexelFormat::RG32F), mesh = texels(w, h, TexelFormat::R32UI),
+             motion = texels(w, h, TexelFormat::RG32F), prev_color = texels(hw, hh, TexelFormat::RGBA32F),
+             prev_moments = texels(hw, hh, TexelFormat::RGBA32F), prev_surface = texels(hw, hh, TexelFormat::RGBA32F),
+             prev_mesh = texels(hw, hh, TexelFormat::R32UI);
+  pack_rgbw(noisy, nullptr, *noisy_buffer);
+  pack_surface(cur, *surface);
+  pack_vec2(cur.depth_grad, *grad);
+  pack_ids(cur.mesh, *mesh);
+  pack_vec2(cur.motion, *motion);
+  if (has_history) {
+    pack_rgbw(prev.color, nullptr, *prev_color);
+    pack_moments(prev.moment1, prev.moment2, prev.length, *prev_moments);
+    pack_surface(prev.surface, *prev_surface);
+    pack_ids(prev.surface.mesh, *prev_mesh);
+  }
+  std::unique_ptr<GpuBuffer> outputs[4];
+  for (auto& o : outputs) o = texels(w, h, TexelFormat::RGBA32F);
 
-  ComputePipeline pipeline(context, load_shader("temporal"), kTemporalBufferCount, sizeof(TemporalPush));
   const TemporalPush push{uint32_t(w),
                           uint32_t(h),
-                          uint32_t(has_history ? pw : 0),
-                          uint32_t(has_history ? ph : 0),
+                          uint32_t(hw),
+                          uint32_t(hh),
                           has_history ? 1u : 0u,
                           uint32_t(params.max_history),
                           params.alpha,
                           params.alpha_moments,
                           params.temporal_depth_relative,
                           params.temporal_normal_cosine};
-  // Enough 8x8 workgroups to cover the frame; the shader skips the overhang.
-  const uint32_t groups_x = (push.width + kTemporalGroupSizeX - 1) / kTemporalGroupSizeX;
-  const uint32_t groups_y = (push.height + kTemporalGroupSizeY - 1) / kTemporalGroupSizeY;
-  pipeline.dispatch(bindings, &push, groups_x, groups_y, ms);
+  // Both streams of the shader read the same planes; the indirect outputs are not read back.
+  SvgfShaders shaders(context);
+  ComputeBatch batch(context, 1);
+  shaders.temporal(batch, {noisy_buffer.get(), noisy_buffer.get()}, {surface.get(), grad.get(), mesh.get(), motion.get()},
+                   {{prev_color.get(), prev_color.get()}, {prev_moments.get(), prev_moments.get()}, prev_surface.get(),
+                    prev_mesh.get()},
+                   {outputs[0].get(), outputs[1].get()}, {outputs[2].get(), outputs[3].get()}, push);
+  batch.run();
+  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
 
-  const std::vector<float> color = buffers[13]->download(), moment1 = buffers[14]->download(),
-                           moment2 = buffers[15]->download(), length = buffers[16]->download();
-  for (size_t i = 0; i < pixels; ++i) {
-    out.color.data[i] = glm::vec3(color[3 * i], color[3 * i + 1], color[3 * i + 2]);
-    out.moment1.data[i] = moment1[i];
-    out.moment2.data[i] = moment2[i];
-    out.length.data[i] = length[i];
-  }
+  out.color = unpack_rgb(*outputs[0], w, h);
+  out.moment1 = unpack_channel(*outputs[2], w, h, 4, 0);
+  out.moment2 = unpack_channel(*outputs[2], w, h, 4, 1);
+  out.length = unpack_channel(*outputs[2], w, h, 4, 2);
   return out;
 }
 

@@ -5,7 +5,7 @@
 //        previous frame's history (empty colour: first frame) and params (alpha, alpha_moments, max_history,
 //        temporal_depth_relative, temporal_normal_cosine); sizes as temporal_pass demands (throws rtdr::Error)
 //   out: C'_i, mu1'_i, mu2'_i, n_i, as temporal_pass() (filters/svgf/temporal.h)
-// Planes travel as std430 arrays, row-major (layout in filters/svgf/temporal_shared.h).
+// Planes travel in the layout of filters/svgf/planes_shared.h (bindings in filters/svgf/temporal_shared.h).
 #pragma once
 
 #include "filters/image.h"

@@ -2,7 +2,7 @@
 //
 //   in:  linear HDR colour (remodulate's output), TonemapParams (validated; throws rtdr::Error when out of range)
 //   out: display colour in [0, 1], as tonemap() (filters/svgf/tonemap.h)
-// Planes travel as std430 float arrays, 3 floats per pixel (layout in filters/svgf/tonemap_shared.h).
+// Planes travel as colour records (filters/svgf/planes_shared.h).
 #pragma once
 
 #include "filters/image.h"

@@ -4,7 +4,7 @@
 //        depth_grad, normal, mesh), all the same size (throws rtdr::Error otherwise); sigma_z, sigma_n, epsilon,
 //        variance_min_history from params
 //   out: sigma'^2 per pixel, as variance_pass() (filters/svgf/variance.h); 0 where no surface
-// Planes travel as std430 arrays, row-major (layout in filters/svgf/variance_shared.h).
+// Planes travel in the layout of filters/svgf/planes_shared.h (bindings in filters/svgf/variance_shared.h).
 #pragma once
 
 #include "filters/image.h"

@@ -1,46 +1,44 @@
-// One level of SVGF's edge-avoiding a-trous wavelet filter [SVGF17 Sec. 4.3, Eq. 1-5], the Vulkan port of
-// atrous_pixel (atrous.cpp), line for line (read_centre, tap_weight and centre_weight likewise):
-//   c_{i+1}(p)      = sum h w c_i(q) / sum h w
-//   Var(c_{i+1}(p)) = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2
+// One level of SVGF's edge-avoiding a-trous wavelet filter [SVGF17 Sec. 4.3, Eq. 1-5] with its variance prefilter
+// [SVGF17 Sec. 4.4], the Vulkan port of atrous_pixel (atrous.cpp) and prefilter_variance_pixel (prefilter.cpp),
+// line for line (read_centre, tap_weight and centre_weight likewise):
+//   g3x3(Var(c_i))(p) = sum g(dx) g(dy) Var(c_i)(p + (dx, dy)), clamped borders  (Eq. 5's prefilter)
+//   c_{i+1}(p)        = sum h w c_i(q) / sum h w
+//   Var(c_{i+1}(p))   = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2
 // Same skip rules: taps outside the image and taps without a surface are skipped, a pixel without a surface
-// passes through, the centre tap gets w = 1. One invocation per pixel, a plain gather (no shared memory).
-//   in:  bindings 0-6: colour, variance, g3x3(variance) (prefilter.comp), depth, depth gradient, normal, mesh id;
-//   out: bindings 7-8: colour, variance. Layout and accuracy: atrous_shared.h.
+// passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
+// one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
+// [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a
+// shared-memory tile measured 2x slower than the gather (docs/performance.md).
+//   in:  bindings 0-1: illumination (c_i, Var(c_i)) of the direct and the indirect stream; 2: surface; 3: depth
+//        gradient;
+//   out: bindings 4-5: illumination (c_{i+1}, Var(c_{i+1})); 6: g3x3(Var(c_i)) of both streams, written only
+//        when p.keep_prefiltered is set. Layout: planes_shared.h and atrous_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/atrous_shared.h"
 
-layout(local_size_x = kAtrousGroupSizeX, local_size_y = kAtrousGroupSizeY) in;
+layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Colour { float colour_rgb[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Variance { float variance[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Prefiltered { float prefiltered_variance[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Depth { float depth[]; };
-layout(std430, set = 0, binding = 4) readonly buffer DepthGrad { float depth_grad_xy[]; };
-layout(std430, set = 0, binding = 5) readonly buffer Normal { float normal_xyz[]; };
-layout(std430, set = 0, binding = 6) readonly buffer Mesh { uint mesh[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer ColourOut { float colour_out_rgb[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer VarianceOut { float variance_out[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
+layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
+layout(set = 0, binding = 2) uniform samplerBuffer surface;
+layout(set = 0, binding = 3) uniform samplerBuffer depth_grad;
+layout(std430, set = 0, binding = 4) writeonly buffer DirectOut { vec4 direct_out[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer IndirectOut { vec4 indirect_out[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
 
 layout(push_constant) uniform Push { AtrousPush p; };
 
-// Plane accessors (filters/image.h's at, inside; SurfacePlanes::covered), pixel (x, y) at y * width + x.
-uint index_of(int x, int y) { return uint(y) * p.width + uint(x); }
+// Plane accessors (filters/image.h's at, inside): pixel (x, y) at y * width + x.
+int index_of(int x, int y) { return y * int(p.width) + x; }
 bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(p.width) && y < int(p.height); }
-bool covered(int x, int y) { return mesh[index_of(x, y)] != kAtrousInvalidId; }
-vec3 color_at(int x, int y) {
-  const uint i = 3u * index_of(x, y);
-  return vec3(colour_rgb[i], colour_rgb[i + 1u], colour_rgb[i + 2u]);
-}
-vec3 normal_at(int x, int y) {
-  const uint i = 3u * index_of(x, y);
-  return vec3(normal_xyz[i], normal_xyz[i + 1u], normal_xyz[i + 2u]);
-}
-vec2 depth_grad_at(int x, int y) {
-  const uint i = 2u * index_of(x, y);
-  return vec2(depth_grad_xy[i], depth_grad_xy[i + 1u]);
-}
+
+// The two streams side by side: component 0 direct, 1 indirect.
+struct Illumination {
+  vec4 stream[2];  // (c.r, c.g, c.b, Var(c)) per stream
+};
+Illumination illumination_at(int i) { return Illumination(vec4[2](texelFetch(direct_in, i), texelFetch(indirect_in, i))); }
 
 // core/color.h's luminance, in its order of operations.
 float luminance(vec3 rgb) {
@@ -58,6 +56,30 @@ float dot2(vec2 a, vec2 b) {
   precise float d = a.x * b.x + a.y * b.y;
   return d;
 }
+
+// --- prefilter.cpp ---
+
+// The 1D binomial weights (1/4, 1/2, 1/4) (prefilter.h's kGaussian3).
+const float kGaussian3[3] = float[3](kPrefilterEdge, kPrefilterCentre, kPrefilterEdge);
+
+// g3x3(Var(c_i)) at (x, y) for both streams: the 3x3 binomial blur of the variance, border pixels repeated
+// (at_clamped) [SVGF17 Sec. 4.4].
+vec2 prefilter_variance_pixel(int x, int y) {
+  precise vec2 sum = vec2(0.0f);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      // The binomial weight of this tap, g(dx) g(dy): 1/4 at the centre, 1/8 at the edges, 1/16 at the corners.
+      const float g = kGaussian3[dx + 1] * kGaussian3[dy + 1];
+      // The neighbour's variance, the border pixel where (x + dx, y + dy) falls outside.
+      const int qx = clamp(x + dx, 0, int(p.width) - 1), qy = clamp(y + dy, 0, int(p.height) - 1);
+      const Illumination q = illumination_at(index_of(qx, qy));
+      // GPU only: `precise` keeps g * var_q and the sum two roundings, as in the golden function.
+      sum += g * vec2(q.stream[0].w, q.stream[1].w);
+    }
+  return sum;
+}
+
+// --- edge_stopping.cpp, atrous.cpp ---
 
 // a_z [SVGF17 Eq. 3] (edge_stopping.h's depth_exponent).
 float depth_exponent(float z_p, float z_q, vec2 grad_z_p, vec2 offset_pq, float sigma_z, float epsilon) {
@@ -79,30 +101,43 @@ struct Centre {
   float z;            // z(p), linear view depth
   vec2 grad_z;        // grad z(p), per pixel [SVGF17 Eq. 3]
   vec3 n;             // n(p), world space [SVGF17 Eq. 4]
-  float l;            // l_i(p), luminance of this level's input [SVGF17 Eq. 5]
-  float var_g3x3;     // g3x3(Var(l_i))(p) [SVGF17 Eq. 5]
-  float l_scale;      // Eq. 5's denominator, sigma_l sqrt(g3x3(Var)(p)) + epsilon
+  vec2 l;             // l_i(p), luminance of this level's input [SVGF17 Eq. 5], per stream
+  vec2 var_g3x3;      // g3x3(Var(l_i))(p) [SVGF17 Eq. 5], per stream
+  vec2 l_scale;       // Eq. 5's denominator, sigma_l sqrt(g3x3(Var)(p)) + epsilon, per stream
 };
 
-Centre read_centre(int x, int y) {
-  const float var_g3x3 = prefiltered_variance[index_of(x, y)];
-  return Centre(x, y, depth[index_of(x, y)], depth_grad_at(x, y), normal_at(x, y), luminance(color_at(x, y)),
-                var_g3x3, luminance_scale(var_g3x3, p.sigma_l, p.epsilon));
+Centre read_centre(int x, int y, vec4 s, Illumination c) {
+  const vec2 var_g3x3 = prefilter_variance_pixel(x, y);
+  const vec2 l = vec2(luminance(c.stream[0].rgb), luminance(c.stream[1].rgb));
+  const vec2 l_scale = vec2(luminance_scale(var_g3x3[0], p.sigma_l, p.epsilon),
+                            luminance_scale(var_g3x3[1], p.sigma_l, p.epsilon));
+  return Centre(x, y, s.w, texelFetch(depth_grad, index_of(x, y)).xy, s.xyz, l, var_g3x3, l_scale);
 }
 
-// w(p, q) = w_z w_n w_l [SVGF17 Eq. 2] for a tap q != p.
-float tap_weight(Centre c, int qx, int qy) {
+// w(p, q) = w_z w_n w_l [SVGF17 Eq. 2] of both streams for a tap q != p with surface record s_q and
+// illumination c_q.
+vec2 tap_weight(Centre c, int qx, int qy, vec4 s_q, Illumination c_q) {
   // p - q in pixels, at the tap's real distance (the step 2^i included) [SVGF17 Eq. 3].
   const vec2 offset_pq = vec2(float(c.x - qx), float(c.y - qy));
-  const float z_q = depth[index_of(qx, qy)];
+  const float z_q = s_q.w;
   const float a_z = depth_exponent(c.z, z_q, c.grad_z, offset_pq, p.sigma_z, p.epsilon);
-  const float cos_pq = max(0.0f, dot3(c.n, normal_at(qx, qy)));
-  const float l_q = luminance(color_at(qx, qy));
-  const float a_l = abs(c.l - l_q) / c.l_scale;
-  if (cos_pq <= 0.0f) return 0.0f;  // w_n = 0: facing away
+  const float cos_pq = max(0.0f, dot3(c.n, s_q.xyz));
+  const vec2 l_q = vec2(luminance(c_q.stream[0].rgb), luminance(c_q.stream[1].rgb));
+  const vec2 a_l = abs(c.l - l_q) / c.l_scale;
+  if (cos_pq <= 0.0f) return vec2(0.0f);  // w_n = 0: facing away
   // w = w_z w_n w_l [SVGF17 Eq. 2] = exp(sigma_n ln cos - a_z - a_l): one exp and one log for the three weights.
-  precise float exponent = p.sigma_n * log(cos_pq) - a_z - a_l;
+  // sigma_n ln cos - a_z is the same for both streams; the subtractions keep the golden order.
+  precise float exponent_zn = p.sigma_n * log(cos_pq) - a_z;
+  precise vec2 exponent = exponent_zn - a_l;
   return exp(exponent);
+}
+
+// h(k), the 1D kernel weight of tap k (atrous_kernel): the B3 spline (1/16, 1/4, 3/8, 1/4, 1/16) for
+// kernel_size 5, the box (1/3, 1/3, 1/3) for 3. GPU only: selects, not a table, which lavapipe would keep in
+// per-invocation memory.
+float kernel_weight(int k) {
+  if (p.kernel_size != 5) return kAtrousBox;
+  return k == 0 ? kAtrousB3Centre : (abs(k) == 1 ? kAtrousB3Inner : kAtrousB3Outer);
 }
 
 // w(p, p) = 1: Eq. 3-5 at q = p, written down rather than computed (see atrous.cpp's banner).
@@ -112,52 +147,54 @@ void main() {
   // This invocation's pixel; the last tiles overhang the frame.
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= int(p.width) || y >= int(p.height)) return;
-  const uint i = index_of(x, y);
+  const int i = index_of(x, y);
+  const vec4 s_p = texelFetch(surface, i);
+  const Illumination c_p = illumination_at(i);
+  if (p.keep_prefiltered != 0u) prefiltered_out[i] = prefilter_variance_pixel(x, y);
 
   // No surface, nothing to compare with: the input passes through.
-  if (!covered(x, y)) {
-    const vec3 c = color_at(x, y);
-    colour_out_rgb[3u * i] = c.r;
-    colour_out_rgb[3u * i + 1u] = c.g;
-    colour_out_rgb[3u * i + 2u] = c.b;
-    variance_out[i] = variance[i];
+  if (!has_surface(s_p)) {
+    direct_out[i] = c_p.stream[0];
+    indirect_out[i] = c_p.stream[1];
     return;
   }
   // atrous_kernel (atrous.cpp): the host has checked kernel_size is 5 or 3; the weights are atrous_shared.h's.
   const int radius = p.kernel_size == 5 ? 2 : 1;
-  const float h_b3[5] = float[5](kAtrousB3Outer, kAtrousB3Inner, kAtrousB3Centre, kAtrousB3Inner, kAtrousB3Outer);
-  const float h_box[5] = float[5](kAtrousBox, kAtrousBox, kAtrousBox, 0.0f, 0.0f);
   const int step = 1 << p.level;  // 2^i: the taps' spacing at level i
-  const Centre centre = read_centre(x, y);
+  const Centre centre = read_centre(x, y, s_p, c_p);
 
   // GPU only: `precise` on the sums keeps each product and add a separate rounding, as in the golden function.
-  precise float sum_hw = 0.0f;        // sum h w        [SVGF17 Eq. 1, denominator]
-  precise vec3 sum_hwc = vec3(0.0f);  // sum h w c_i(q) [SVGF17 Eq. 1, numerator]
-  precise float sum_h2w2_var = 0.0f;  // sum h^2 w^2 Var(c_i(q)) [SVGF17 Sec. 4.3]
+  // Per stream s: sum h w [SVGF17 Eq. 1, denominator], sum h w c_i(q) [Eq. 1, numerator], and
+  // sum h^2 w^2 Var(c_i(q)) [SVGF17 Sec. 4.3].
+  precise vec2 sum_hw = vec2(0.0f);
+  precise vec3 sum_hwc[2] = vec3[2](vec3(0.0f), vec3(0.0f));
+  precise vec2 sum_h2w2_var = vec2(0.0f);
   for (int j = -radius; j <= radius; ++j)
     for (int k = -radius; k <= radius; ++k) {
       const int qx = x + k * step, qy = y + j * step;  // the tap q, 2^i (k, j) away from p
       // Off the image: skipped; sum h w renormalises over the taps that remain.
       if (!inside(qx, qy)) continue;
+      const int q = index_of(qx, qy);
+      const vec4 s_q = texelFetch(surface, q);
       // No surface at q: nothing to filter there.
-      if (!covered(qx, qy)) continue;
-      const float hk = p.kernel_size == 5 ? h_b3[k + radius] : h_box[k + radius];
-      const float hj = p.kernel_size == 5 ? h_b3[j + radius] : h_box[j + radius];
+      if (!has_surface(s_q)) continue;
+      const Illumination c_q = illumination_at(q);
+      const float hk = kernel_weight(k), hj = kernel_weight(j);
       precise float h = hk * hj;  // h(q) = h(dx) h(dy)
-      // w(p, q) [SVGF17 Eq. 2]; 1 at the centre tap, where every edge-stopping weight is 1.
-      const float w = (k == 0 && j == 0) ? centre_weight() : tap_weight(centre, qx, qy);
-      const float var_q = variance[index_of(qx, qy)];
-      sum_hw += h * w;                                 // the normaliser
-      sum_hwc += h * w * color_at(qx, qy);             // the weighted colours
-      sum_h2w2_var += h * h * w * w * var_q;           // the weighted variances, weights squared
+      // w(p, q) [SVGF17 Eq. 2] per stream; 1 at the centre tap, where every edge-stopping weight is 1.
+      const vec2 w = (k == 0 && j == 0) ? vec2(centre_weight()) : tap_weight(centre, qx, qy, s_q, c_q);
+      const vec2 var_q = vec2(c_q.stream[0].w, c_q.stream[1].w);
+      sum_hw += h * w;                               // the normaliser
+      sum_hwc[0] += h * w[0] * c_q.stream[0].rgb;    // the weighted colours
+      sum_hwc[1] += h * w[1] * c_q.stream[1].rgb;
+      sum_h2w2_var += h * h * w * w * var_q;         // the weighted variances, weights squared
     }
 
   // c_{i+1}(p) = sum h w c_i(q) / sum h w [SVGF17 Eq. 1].
-  const vec3 c_next = sum_hwc / sum_hw;
+  const vec3 c_next_direct = sum_hwc[0] / sum_hw[0];
+  const vec3 c_next_indirect = sum_hwc[1] / sum_hw[1];
   // Var(c_{i+1}(p)) = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2 [SVGF17 Sec. 4.3].
-  precise float var_next = sum_h2w2_var / (sum_hw * sum_hw);
-  colour_out_rgb[3u * i] = c_next.r;
-  colour_out_rgb[3u * i + 1u] = c_next.g;
-  colour_out_rgb[3u * i + 2u] = c_next.b;
-  variance_out[i] = var_next;
+  precise vec2 var_next = sum_h2w2_var / (sum_hw * sum_hw);
+  direct_out[i] = vec4(c_next_direct, var_next[0]);
+  indirect_out[i] = vec4(c_next_indirect, var_next[1]);
 }

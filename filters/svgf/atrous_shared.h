@@ -1,16 +1,13 @@
-// What one a-trous level's C++ (atrous.cpp, prefilter.cpp, gpu/atrous_gpu.cpp) and GLSL (atrous.comp,
-// prefilter.comp) share, written once: the workgroup size, the push-constant block, the a-trous kernel weights
-// (atrous.cpp's atrous_kernel takes them from here) and the prefilter's binomial weights. Both compilers include
-// this file; GLSL has the C preprocessor, and the #ifdef __cplusplus block maps GLSL's `uint` to C++.
+// What one a-trous level's C++ (atrous.cpp, prefilter.cpp, gpu/atrous_gpu.cpp, gpu/svgf_gpu.cpp) and GLSL
+// (atrous.comp) share, written once: the push-constant block, the a-trous kernel weights (atrous.cpp's atrous_kernel
+// takes them from here) and the prefilter's binomial weights. Both compilers include this file; GLSL has the C
+// preprocessor, and core/shader_shared.h maps GLSL's types to C++.
 //
-// Buffer layout of the port (std430, set 0), every plane row-major, pixel (x, y) at index y * width + x:
-//   prefilter.comp: binding 0 variance Var(c_i) (1 float per pixel), binding 1 g3x3(Var(c_i)) written.
-//   atrous.comp:    binding 0 colour c_i (3 floats, R G B), 1 variance Var(c_i), 2 g3x3(Var(c_i)), 3 depth z,
-//                   4 depth gradient (2 floats, d/dx d/dy), 5 normal (3 floats), 6 mesh id (1 uint,
-//                   kAtrousInvalidId where no surface), 7 colour c_{i+1} written (3 floats), 8 Var(c_{i+1}) written.
-// These are exactly the planes' data arrays (glm::vec3 is 3 packed floats, glm::vec2 2).
+// Buffer layout (filters/svgf/planes_shared.h): bindings 0-1 the illumination records (c_i, Var(c_i)) of the direct
+// and the indirect stream, 2 the surface record, 3 the depth gradient, all texel buffers; 4-5 the records
+// (c_{i+1}, Var(c_{i+1})) written, 6 g3x3(Var(c_i)) of both streams written (vec2 per pixel) when keep_prefiltered.
 //
-// Accuracy of the port: the shaders do the golden functions' fp32 operations in the same order (the sums and
+// Accuracy of the port: the shader does the golden functions' fp32 operations in the same order (the sums and
 // products are `precise`, so no fma contraction changes their rounding). What differs is exp, log and sqrt:
 // GLSL's exp may be off by 3 + 2|x| ulp and log by a few ulp where libm's are within 1 ulp. With the tap exponents
 // that matter (|x| < ~20; smaller weights are under 2e-9 of the centre's) a tap weight differs by a relative few
@@ -23,20 +20,14 @@
 // The luminance weights RTDR_LUMINANCE_R/G/B of core/color.h's luminance(), written once.
 #include "core/color_shared.h"
 
-#include "core/frame_shared.h"
-
 #include "core/shader_shared.h"
+
+// The GPU planes' layout and the workgroup size of every SVGF port.
+#include "filters/svgf/planes_shared.h"
 
 #ifdef __cplusplus
 namespace rtdr {
 #endif
-
-// One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
-RTDR_SHARED_CONST RTDR_SHARED_UINT kAtrousGroupSizeX = 8;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kAtrousGroupSizeY = 8;
-
-// id.mesh of a pixel without a surface: core/frame_shared.h's RTDR_INVALID_ID, core/frame.h's kInvalidId.
-RTDR_SHARED_CONST RTDR_SHARED_UINT kAtrousInvalidId = RTDR_INVALID_ID;
 
 // The 1D a-trous kernels h [SVGF17 Eq. 1, ASVGF18 Sec. 4], taps k = -radius..radius:
 // kernel_size 5, the B3 spline (1/16, 1/4, 3/8, 1/4, 1/16); kernel_size 3, the box (1/3, 1/3, 1/3).
@@ -51,8 +42,8 @@ RTDR_SHARED_CONST float kPrefilterEdge = 0.25f;   // g(+-1)
 RTDR_SHARED_CONST float kPrefilterCentre = 0.5f;  // g(0)
 
 // The push-constant block, for both shaders: the frame size (invocations outside it do nothing), the level i
-// (taps 2^i apart), the kernel size (5 or 3) and the edge-stopping parameters of SvgfParams.
-// The prefilter reads only width and height.
+// (taps 2^i apart), the kernel size (5 or 3), the edge-stopping parameters of SvgfParams, and whether to write
+// the prefiltered variance (for dumps and tests; the pipeline needs it only inside the shader).
 struct AtrousPush {
   RTDR_SHARED_UINT width;
   RTDR_SHARED_UINT height;
@@ -62,6 +53,7 @@ struct AtrousPush {
   float sigma_n;
   float sigma_l;
   float epsilon;
+  RTDR_SHARED_UINT keep_prefiltered;  // 1: write g3x3(Var(c_i)) to binding 6
 };
 
 #ifdef __cplusplus

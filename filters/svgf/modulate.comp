@@ -1,18 +1,19 @@
 // Remodulation [SVGF17 Sec. 3], the Vulkan port of remodulate_pixel (modulate.cpp), line for line:
 // colour = emission + max(albedo, 0.001) * (direct + indirect). One invocation per pixel.
-//   in:  bindings 0-3: direct, indirect, albedo, emission; out: binding 4: colour. Layout: modulate_shared.h.
+//   in:  bindings 0-3: direct, indirect (illumination records: the last a-trous level's), albedo, emission (colour
+//        records); out: binding 4: colour. Layout: planes_shared.h, modulate_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/modulate_shared.h"
 
-layout(local_size_x = kModulateGroupSizeX, local_size_y = kModulateGroupSizeY) in;
+layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Direct { float direct_rgb[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Indirect { float indirect_rgb[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Albedo { float albedo_rgb[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Emission { float emission_rgb[]; };
-layout(std430, set = 0, binding = 4) writeonly buffer Colour { float colour_rgb[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
+layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
+layout(set = 0, binding = 2) uniform samplerBuffer albedo_in;
+layout(set = 0, binding = 3) uniform samplerBuffer emission_in;
+layout(std430, set = 0, binding = 4) writeonly buffer Colour { vec4 colour_out[]; };
 
 layout(push_constant) uniform Push { ModulatePush frame; };
 
@@ -34,14 +35,8 @@ void main() {
   // This invocation's pixel; the last tiles overhang the frame.
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
-  // The pixel's first float: 3 floats (R, G, B) per pixel, row-major (modulate_shared.h).
-  const uint i = 3u * (pixel.y * frame.width + pixel.x);
-  const vec3 direct = vec3(direct_rgb[i], direct_rgb[i + 1u], direct_rgb[i + 2u]);
-  const vec3 indirect = vec3(indirect_rgb[i], indirect_rgb[i + 1u], indirect_rgb[i + 2u]);
-  const vec3 albedo = vec3(albedo_rgb[i], albedo_rgb[i + 1u], albedo_rgb[i + 2u]);
-  const vec3 emission = vec3(emission_rgb[i], emission_rgb[i + 1u], emission_rgb[i + 2u]);
-  const vec3 colour = remodulate_pixel(direct, indirect, albedo, emission);
-  colour_rgb[i] = colour.r;
-  colour_rgb[i + 1u] = colour.g;
-  colour_rgb[i + 2u] = colour.b;
+  const int i = int(pixel.y * frame.width + pixel.x);
+  const vec3 colour = remodulate_pixel(texelFetch(direct_in, i).rgb, texelFetch(indirect_in, i).rgb,
+                                       texelFetch(albedo_in, i).rgb, texelFetch(emission_in, i).rgb);
+  colour_out[i] = vec4(colour, 0.0);
 }

@@ -1,48 +1,42 @@
 // Temporal accumulation [SVGF17 Sec. 4.1, 4.2], the Vulkan port of temporal_pixel (temporal.cpp), function for
 // function: back-project along the motion vector, resample the history with consistency-tested 2x2 bilinear
 // taps, else a 3x3 fallback, else a disocclusion; then the EMA of colour and moments with
-// alpha_eff = max(alpha, 1/n). One invocation per pixel.
-//   in:  bindings 0-12 (noisy colour, current G-buffer, history); out: bindings 13-16 (C', mu1', mu2', n).
-//   Layout: temporal_shared.h.
+// alpha_eff = max(alpha, 1/n). One invocation per pixel for both streams, direct and indirect: the consistency
+// tests and tap weights depend on the G-buffers alone, so they are computed once and applied to both histories.
+//   in:  bindings 0-1 noisy illumination (direct, indirect); 2-5 current surface, depth gradient, mesh id, motion;
+//        6-7 history illumination, 8-9 history moments (direct, indirect); 10-11 previous surface, mesh id.
+//   out: bindings 12-13 illumination (C', 0), 14-15 moments (mu1', mu2', n, 0) (direct, indirect).
+//   Layout: planes_shared.h and temporal_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/temporal_shared.h"
 
-layout(local_size_x = kTemporalGroupSizeX, local_size_y = kTemporalGroupSizeY) in;
+layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Noisy { float noisy_rgb[]; };
-layout(std430, set = 0, binding = 1) readonly buffer CurDepth { float cur_depth[]; };
-layout(std430, set = 0, binding = 2) readonly buffer CurDepthGrad { float cur_depth_grad_xy[]; };
-layout(std430, set = 0, binding = 3) readonly buffer CurNormal { float cur_normal_xyz[]; };
-layout(std430, set = 0, binding = 4) readonly buffer CurMesh { uint cur_mesh[]; };
-layout(std430, set = 0, binding = 5) readonly buffer CurMotion { float cur_motion_xy[]; };
-layout(std430, set = 0, binding = 6) readonly buffer PrevColor { float prev_color_rgb[]; };
-layout(std430, set = 0, binding = 7) readonly buffer PrevMoment1 { float prev_moment1[]; };
-layout(std430, set = 0, binding = 8) readonly buffer PrevMoment2 { float prev_moment2[]; };
-layout(std430, set = 0, binding = 9) readonly buffer PrevLength { float prev_length[]; };
-layout(std430, set = 0, binding = 10) readonly buffer PrevDepth { float prev_depth[]; };
-layout(std430, set = 0, binding = 11) readonly buffer PrevNormal { float prev_normal_xyz[]; };
-layout(std430, set = 0, binding = 12) readonly buffer PrevMesh { uint prev_mesh[]; };
-layout(std430, set = 0, binding = 13) writeonly buffer OutColor { float out_color_rgb[]; };
-layout(std430, set = 0, binding = 14) writeonly buffer OutMoment1 { float out_moment1[]; };
-layout(std430, set = 0, binding = 15) writeonly buffer OutMoment2 { float out_moment2[]; };
-layout(std430, set = 0, binding = 16) writeonly buffer OutLength { float out_length[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer noisy_direct;
+layout(set = 0, binding = 1) uniform samplerBuffer noisy_indirect;
+layout(set = 0, binding = 2) uniform samplerBuffer cur_surface;
+layout(set = 0, binding = 3) uniform samplerBuffer cur_depth_grad;
+layout(set = 0, binding = 4) uniform usamplerBuffer cur_mesh;
+layout(set = 0, binding = 5) uniform samplerBuffer cur_motion;
+layout(set = 0, binding = 6) uniform samplerBuffer prev_direct;
+layout(set = 0, binding = 7) uniform samplerBuffer prev_indirect;
+layout(set = 0, binding = 8) uniform samplerBuffer prev_moments_direct;
+layout(set = 0, binding = 9) uniform samplerBuffer prev_moments_indirect;
+layout(set = 0, binding = 10) uniform samplerBuffer prev_surface;
+layout(set = 0, binding = 11) uniform usamplerBuffer prev_mesh;
+layout(std430, set = 0, binding = 12) writeonly buffer OutDirect { vec4 out_direct[]; };
+layout(std430, set = 0, binding = 13) writeonly buffer OutIndirect { vec4 out_indirect[]; };
+layout(std430, set = 0, binding = 14) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
+layout(std430, set = 0, binding = 15) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
 
 layout(push_constant) uniform Push { TemporalPush frame; };
 
 // The planes' accessors (Plane::at, inside): element y * width + x of the current or the previous frame.
-uint cur_index(int x, int y) { return uint(y) * frame.width + uint(x); }
-uint prev_index(ivec2 q) { return uint(q.y) * frame.prev_width + uint(q.x); }
+int cur_index(int x, int y) { return y * int(frame.width) + x; }
+int prev_index(ivec2 q) { return q.y * int(frame.prev_width) + q.x; }
 bool prev_inside(ivec2 q) { return q.x >= 0 && q.y >= 0 && q.x < int(frame.prev_width) && q.y < int(frame.prev_height); }
-vec3 prev_color_at(ivec2 q) {
-  const uint i = 3u * prev_index(q);
-  return vec3(prev_color_rgb[i], prev_color_rgb[i + 1u], prev_color_rgb[i + 2u]);
-}
-vec3 prev_normal_at(ivec2 q) {
-  const uint i = 3u * prev_index(q);
-  return vec3(prev_normal_xyz[i], prev_normal_xyz[i + 1u], prev_normal_xyz[i + 2u]);
-}
 
 // core/color.h's luminance: R r + G g + B b, in that order.
 float luminance(vec3 rgb) {
@@ -51,22 +45,32 @@ float luminance(vec3 rgb) {
   return l;
 }
 
-// The history values at p': weighted sums while the taps are gathered, the resampled history afterwards.
+// One stream's history values at p': weighted sums while the taps are gathered, the resampled history afterwards.
 struct HistorySample {
   vec3 color;
   float moment1;
   float moment2;
   float len;  // C++: length (a GLSL method name: h.length would call .length())
 };
+// Both streams': 0 direct, 1 indirect.
+struct Histories {
+  HistorySample stream[2];
+};
+const HistorySample kNoHistory = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+const Histories kNoHistories = Histories(HistorySample[2](kNoHistory, kNoHistory));
 
 // GPU only: every arithmetic on history samples is `precise`, so no fma changes C++'s rounding.
-void add_tap(inout HistorySample h, ivec2 q, float w) {
-  const uint i = prev_index(q);
-  precise vec3 color = h.color + w * prev_color_at(q);
-  precise float moment1 = h.moment1 + w * prev_moment1[i];
-  precise float moment2 = h.moment2 + w * prev_moment2[i];
-  precise float len = h.len + w * prev_length[i];
-  h = HistorySample(color, moment1, moment2, len);
+HistorySample add_tap(HistorySample h, vec4 color, vec4 moments, float w) {
+  precise vec3 c = h.color + w * color.rgb;
+  precise float moment1 = h.moment1 + w * moments.x;
+  precise float moment2 = h.moment2 + w * moments.y;
+  precise float len = h.len + w * moments.z;
+  return HistorySample(c, moment1, moment2, len);
+}
+void add_taps(inout Histories h, ivec2 q, float w) {
+  const int i = prev_index(q);
+  h.stream[0] = add_tap(h.stream[0], texelFetch(prev_direct, i), texelFetch(prev_moments_direct, i), w);
+  h.stream[1] = add_tap(h.stream[1], texelFetch(prev_indirect, i), texelFetch(prev_moments_indirect, i), w);
 }
 
 HistorySample scaled(HistorySample h, float s) {
@@ -74,31 +78,38 @@ HistorySample scaled(HistorySample h, float s) {
   precise float moment1 = s * h.moment1, moment2 = s * h.moment2, len = s * h.len;
   return HistorySample(color, moment1, moment2, len);
 }
+Histories scaled(Histories h, float s) { return Histories(HistorySample[2](scaled(h.stream[0], s), scaled(h.stream[1], s))); }
+
+// What the consistency test needs to know about p, read once per pixel.
+struct Centre {
+  uint mesh;    // id.mesh(p)
+  float z;      // z(p)
+  vec2 grad_z;  // grad z(p)
+  vec3 n;       // n(p)
+};
 
 // The consistency test of one history tap (temporal.h): q inside the previous image, same mesh id, depth and
 // normal within the thresholds [SVGF17 Sec. 4.1].
-bool temporal_tap_consistent(int x, int y, ivec2 q, vec2 p_prev) {
+bool temporal_tap_consistent(Centre c, ivec2 q, vec2 p_prev) {
   // The tap's centre relative to p', in pixels.
   precise vec2 offset = vec2(q) + 0.5 - p_prev;
   // The tap must exist in the previous frame.
   const bool in_image = prev_inside(q);
   if (!in_image) return false;
-  const uint p = cur_index(x, y), iq = prev_index(q);
+  const int iq = prev_index(q);
   // Mesh ids compare exactly; a tap with no surface (kInvalidId) never matches a covered pixel.
-  const bool same_mesh = prev_mesh[iq] == cur_mesh[p];
+  const bool same_mesh = texelFetch(prev_mesh, iq).x == c.mesh;
   // Depth: |z - z'| <= temporal_depth_relative max(z, z') + |grad z(p) . (q - p')|  (temporal.h).
-  const float z = cur_depth[p];
-  const float z_prev = prev_depth[iq];
-  const float dz = abs(z - z_prev);
-  const vec2 grad_z = vec2(cur_depth_grad_xy[2u * p], cur_depth_grad_xy[2u * p + 1u]);
+  const vec4 s_prev = texelFetch(prev_surface, iq);
+  const float z_prev = s_prev.w;
+  const float dz = abs(c.z - z_prev);
   // GPU only: glm::dot written out ((x x) + (y y)) and `precise`.
-  precise float predicted = grad_z.x * offset.x + grad_z.y * offset.y;
-  precise float dz_max = frame.temporal_depth_relative * max(z, z_prev) + abs(predicted);
+  precise float predicted = c.grad_z.x * offset.x + c.grad_z.y * offset.y;
+  precise float dz_max = frame.temporal_depth_relative * max(c.z, z_prev) + abs(predicted);
   const bool depth_ok = dz <= dz_max;
   // Normal: n(p) . n'(q) >= temporal_normal_cosine (svgf_params.h).
-  const vec3 n = vec3(cur_normal_xyz[3u * p], cur_normal_xyz[3u * p + 1u], cur_normal_xyz[3u * p + 2u]);
-  const vec3 n_prev = prev_normal_at(q);
-  precise float cos_n = n.x * n_prev.x + n.y * n_prev.y + n.z * n_prev.z;
+  const vec3 n_prev = s_prev.xyz;
+  precise float cos_n = c.n.x * n_prev.x + c.n.y * n_prev.y + c.n.z * n_prev.z;
   const bool normal_ok = cos_n >= frame.temporal_normal_cosine;
   return same_mesh && depth_ok && normal_ok;
 }
@@ -106,22 +117,22 @@ bool temporal_tap_consistent(int x, int y, ivec2 q, vec2 p_prev) {
 // The 2x2 bilinear resampling of the history at p' [SVGF17 Sec. 4.1]. A tap that fails the consistency test
 // is discarded and the consistent taps' weights are renormalised to sum to 1. False when no consistent tap
 // carries any weight.
-bool resample_bilinear(int x, int y, vec2 p_prev, out HistorySample result) {
-  result = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+bool resample_bilinear(Centre c, vec2 p_prev, out Histories result) {
+  result = kNoHistories;
   // Pixel centres sit at integer + 0.5, so the four centres around p' start at floor(p' - 0.5).
   precise vec2 s = p_prev - 0.5;
   const ivec2 q00 = ivec2(floor(s));
   // Where p' lies inside the square of those four centres: the bilinear interpolation parameters.
   precise vec2 f = s - floor(s);
   precise float sum_good = 0.0;
-  HistorySample h = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+  Histories h = kNoHistories;
   for (int k = 0; k < 4; ++k) {
     const ivec2 d = ivec2(k & 1, k >> 1);  // (0, 0), (1, 0), (0, 1), (1, 1)
     // Bilinear weight: (1 - f) towards the near centre, f towards the far one, on each axis.
     precise float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y);
-    const bool ok = temporal_tap_consistent(x, y, q00 + d, p_prev);
+    const bool ok = temporal_tap_consistent(c, q00 + d, p_prev);
     sum_good += ok ? w : 0.0;
-    if (ok) add_tap(h, q00 + d, w);
+    if (ok) add_taps(h, q00 + d, w);
   }
   if (!(sum_good > 0.0)) return false;
   // sum_k w_k h_k / sum_k w_k over the consistent taps.
@@ -131,16 +142,16 @@ bool resample_bilinear(int x, int y, vec2 p_prev, out HistorySample result) {
 
 // The 3x3 fallback [SVGF17 Sec. 4.1]: the pixel whose square holds p' and its 8 neighbours, the consistent
 // ones averaged with equal weights. False when none is consistent.
-bool resample_3x3(int x, int y, vec2 p_prev, out HistorySample result) {
-  result = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+bool resample_3x3(Centre c, vec2 p_prev, out Histories result) {
+  result = kNoHistories;
   // The pixel containing p', i.e. the one whose centre is nearest to p'.
-  const ivec2 c = ivec2(floor(p_prev));
-  HistorySample h = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+  const ivec2 q_c = ivec2(floor(p_prev));
+  Histories h = kNoHistories;
   int count = 0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
-      if (!temporal_tap_consistent(x, y, c + ivec2(dx, dy), p_prev)) continue;
-      add_tap(h, c + ivec2(dx, dy), 1.0);
+      if (!temporal_tap_consistent(c, q_c + ivec2(dx, dy), p_prev)) continue;
+      add_taps(h, q_c + ivec2(dx, dy), 1.0);
       ++count;
     }
   if (count == 0) return false;
@@ -149,21 +160,20 @@ bool resample_3x3(int x, int y, vec2 p_prev, out HistorySample result) {
 }
 
 // The history of pixel (x, y): bilinear at p', else the 3x3 fallback; false means a disocclusion.
-bool backproject_history(int x, int y, out HistorySample result) {
-  result = HistorySample(vec3(0.0), 0.0, 0.0, 0.0);
+bool backproject_history(int x, int y, Centre c, out Histories result) {
+  result = kNoHistories;
   const bool first_frame = frame.has_history == 0u;
   if (first_frame) return false;
   // p' = pixel centre + motion: where this pixel's surface point was in the previous frame, in pixels
   // [TRMV21 Eq. 1, the motion vector of SVGF17 Sec. 4.1].
-  const uint p = cur_index(x, y);
-  precise vec2 p_prev = vec2(float(x) + 0.5, float(y) + 0.5) + vec2(cur_motion_xy[2u * p], cur_motion_xy[2u * p + 1u]);
+  precise vec2 p_prev = vec2(float(x) + 0.5, float(y) + 0.5) + texelFetch(cur_motion, cur_index(x, y)).xy;
   // More than a pixel outside the previous image no tap of either filter can be inside (false for a NaN p'
   // too). Testing this first keeps floor(p') within int range.
   const float w = float(frame.prev_width), h = float(frame.prev_height);
   const bool near = p_prev.x > -1.0 && p_prev.y > -1.0 && p_prev.x < w + 1.0 && p_prev.y < h + 1.0;
   if (!near) return false;
-  const bool bilinear = resample_bilinear(x, y, p_prev, result);
-  return bilinear || resample_3x3(x, y, p_prev, result);
+  const bool bilinear = resample_bilinear(c, p_prev, result);
+  return bilinear || resample_3x3(c, p_prev, result);
 }
 
 struct TemporalPixel {
@@ -197,15 +207,10 @@ TemporalPixel accumulate(vec3 C, float l, HistorySample h) {
   return TemporalPixel(color, moment1, moment2, n);
 }
 
-TemporalPixel temporal_pixel(int x, int y) {
-  const uint p = cur_index(x, y);
-  const bool covered = cur_mesh[p] != kTemporalInvalidId;
-  if (!covered) return TemporalPixel(vec3(0.0), 0.0, 0.0, 0.0);  // no surface: colour, moments and length 0
-  const vec3 C = vec3(noisy_rgb[3u * p], noisy_rgb[3u * p + 1u], noisy_rgb[3u * p + 2u]);
+// One stream's result from its noisy colour C and its back-projected history (found: not a disocclusion).
+TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h) {
   // l: the luminance of the noisy colour; l and l^2 are its first two raw moments [SVGF17 Sec. 4.2].
   const float l = luminance(C);
-  HistorySample h;
-  const bool found = backproject_history(x, y, h);
   if (!found) return disocclusion(C, l);
   // n_{i-1}: the weighted mean of the taps' n rounded to whole frames, floor(x + 0.5) (temporal.cpp says why).
   precise float rounded = floor(h.len + 0.5);
@@ -213,16 +218,28 @@ TemporalPixel temporal_pixel(int x, int y) {
   return accumulate(C, l, h);
 }
 
+void write(int i, TemporalPixel direct, TemporalPixel indirect) {
+  out_direct[i] = vec4(direct.color, 0.0);
+  out_indirect[i] = vec4(indirect.color, 0.0);
+  out_moments_direct[i] = vec4(direct.moment1, direct.moment2, direct.len, 0.0);
+  out_moments_indirect[i] = vec4(indirect.moment1, indirect.moment2, indirect.len, 0.0);
+}
+
 void main() {
   // This invocation's pixel; the last tiles overhang the frame.
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= frame.width || pixel.y >= frame.height) return;
-  const TemporalPixel t = temporal_pixel(int(pixel.x), int(pixel.y));
-  const uint i = cur_index(int(pixel.x), int(pixel.y));
-  out_color_rgb[3u * i] = t.color.r;
-  out_color_rgb[3u * i + 1u] = t.color.g;
-  out_color_rgb[3u * i + 2u] = t.color.b;
-  out_moment1[i] = t.moment1;
-  out_moment2[i] = t.moment2;
-  out_length[i] = t.len;
+  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
+  const int i = cur_index(pixel.x, pixel.y);
+  const vec4 s = texelFetch(cur_surface, i);
+  const Centre c = Centre(texelFetch(cur_mesh, i).x, s.w, texelFetch(cur_depth_grad, i).xy, s.xyz);
+  // No surface: colour, moments and length 0.
+  const TemporalPixel none = TemporalPixel(vec3(0.0), 0.0, 0.0, 0.0);
+  if (!has_surface(s)) {
+    write(i, none, none);
+    return;
+  }
+  Histories h;
+  const bool found = backproject_history(pixel.x, pixel.y, c, h);
+  write(i, temporal_stream(texelFetch(noisy_direct, i).rgb, found, h.stream[0]),
+        temporal_stream(texelFetch(noisy_indirect, i).rgb, found, h.stream[1]));
 }

@@ -1,21 +1,20 @@
-// Temporal accumulation [SVGF17 Sec. 4.1, 4.2]: what its C++ (gpu/temporal_gpu.cpp) and GLSL (temporal.comp)
-// share, written once: the workgroup size, the "no surface" id and the push-constant block. The luminance
-// weights come from core/color_shared.h (shared with core/color.h's luminance()). Both compilers include this
-// file; GLSL has the C preprocessor, and core/shader_shared.h maps the types.
+// Temporal accumulation [SVGF17 Sec. 4.1, 4.2]: what its C++ (gpu/svgf_shaders.cpp) and GLSL (temporal.comp)
+// share, written once: the binding count and the push-constant block. The luminance weights come from
+// core/color_shared.h (shared with core/color.h's luminance()). Both compilers include this file; GLSL has the C
+// preprocessor, and core/shader_shared.h maps the types.
 //
-// Buffer layout of the port (std430, set 0), pixel (x, y) at element y * width + x (the history's planes:
-// y * prev_width + x), row-major, exactly the planes' data; vec2 planes are 2 floats, RGB planes 3 floats:
-//   0 noisy C_i (rgb)
-//   1 depth, 2 depth_grad (xy), 3 normal (xyz), 4 mesh (uint32), 5 motion (xy)       current SurfacePlanes
-//   6 colour C'_{i-1} (rgb), 7 moment1, 8 moment2, 9 length                          TemporalHistory
-//   10 depth, 11 normal (xyz), 12 mesh (uint32)                                      TemporalHistory::surface
-//   13 colour C'_i (rgb), 14 moment1, 15 moment2, 16 length, written                 TemporalOutput
+// Bindings (layout of each plane: planes_shared.h; the history's planes are prev_width x prev_height):
+//   0-1 noisy illumination C_i, direct and indirect                                    texel buffers
+//   2 surface, 3 depth gradient, 4 mesh id, 5 motion                                   current G-buffer
+//   6-7 illumination C'_{i-1}, 8-9 moments (mu1', mu2', n) of the direct and indirect  TemporalHistory
+//   10 surface, 11 mesh id                                                             TemporalHistory::surface
+//   12-13 illumination C'_i, 14-15 moments, direct and indirect, written               storage buffers
 #ifndef RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 #define RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 
 #include "core/color_shared.h"
 
-#include "core/frame_shared.h"
+#include "filters/svgf/planes_shared.h"
 
 #include "core/shader_shared.h"
 
@@ -23,15 +22,10 @@
 namespace rtdr {
 #endif
 
-// One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalGroupSizeX = 8;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalGroupSizeY = 8;
-
-// The number of storage buffers (bindings 0..16 above).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalBufferCount = 17;
-
-// id.mesh where no surface: core/frame_shared.h's RTDR_INVALID_ID, core/frame.h's kInvalidId.
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalInvalidId = RTDR_INVALID_ID;
+// The number of bindings (0..15 above): 12 texel buffers and 4 storage buffers, within every Vulkan device's
+// per-stage minimums (16 sampled, 4 storage).
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalTexelBindings = 12;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalStorageBindings = 4;
 
 // The push-constant block: the current and previous frame sizes, whether there is a history (0: first frame,
 // every pixel a disocclusion), and the parameters temporal_pixel reads (svgf_params.h; max_history is an int

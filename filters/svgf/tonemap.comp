@@ -1,16 +1,16 @@
 // Tone mapping [Reinhard02 Eqs. 2-3 on luminance, SVGF17 Sec. 3 "Post Processing"], the Vulkan port of
 // tonemap_pixel (tonemap.cpp), line for line: L_w = Y(colour), L = exposure * L_w, L_d = L / (1 + L),
 // display = clamp(colour * L_d / L_w, 0, 1); black where L_w <= 0. One invocation per pixel.
-//   in:  binding 0: HDR colour; out: binding 1: display colour. Layout: tonemap_shared.h.
+//   in:  binding 0: HDR colour; out: binding 1: display colour. Layout: planes_shared.h, tonemap_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/tonemap_shared.h"
 
-layout(local_size_x = kTonemapGroupSizeX, local_size_y = kTonemapGroupSizeY) in;
+layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Colour { float colour_rgb[]; };
-layout(std430, set = 0, binding = 1) writeonly buffer Display { float display_rgb[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer colour_in;
+layout(std430, set = 0, binding = 1) writeonly buffer Display { vec4 display_out[]; };
 
 layout(push_constant) uniform Push { TonemapPush frame; };
 
@@ -43,11 +43,6 @@ void main() {
   // This invocation's pixel; the last tiles overhang the frame.
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
-  // The pixel's first float: 3 floats (R, G, B) per pixel, row-major (tonemap_shared.h).
-  const uint i = 3u * (pixel.y * frame.width + pixel.x);
-  const vec3 colour = vec3(colour_rgb[i], colour_rgb[i + 1u], colour_rgb[i + 2u]);
-  const vec3 display = tonemap_pixel(colour, frame.exposure);
-  display_rgb[i] = display.r;
-  display_rgb[i + 1u] = display.g;
-  display_rgb[i + 2u] = display.b;
+  const int i = int(pixel.y * frame.width + pixel.x);
+  display_out[i] = vec4(tonemap_pixel(texelFetch(colour_in, i).rgb, frame.exposure), 0.0);
 }

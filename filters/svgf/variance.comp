@@ -1,39 +1,32 @@
 // Variance estimation [SVGF17 Sec. 4.2], the Vulkan port of variance_pixel (variance.cpp), function for function:
 // sigma'^2 = mu2' - mu1'^2 where n >= variance_min_history, else the same formula on moments averaged over a
 // 7x7 neighbourhood with bilateral weights w = w_z w_n [SVGF17 Eq. 3, 4] (edge_stopping.cpp). One invocation
-// per pixel.
-//   in:  bindings 0-2: moment1, moment2, length (TemporalOutput); 3-6: depth, depth_grad, normal, mesh
-//        (SurfacePlanes); out: binding 7: sigma2. Layout: variance_shared.h.
+// per pixel for both streams, direct and indirect: the bilateral weights depend on the G-buffer alone, so they
+// are computed once for both.
+//   in:  bindings 0-1: illumination C' (temporal output), 2-3: moments (mu1', mu2', n) of the direct and the
+//        indirect stream; 4-5: surface, depth gradient;
+//   out: bindings 6-7: illumination (C', sigma'^2), direct and indirect. Layout: planes_shared.h, variance_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/variance_shared.h"
 
-layout(local_size_x = kVarianceGroupSizeX, local_size_y = kVarianceGroupSizeY) in;
+layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Moment1 { float moment1[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Moment2 { float moment2[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Length { float history_length[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Depth { float depth[]; };
-layout(std430, set = 0, binding = 4) readonly buffer DepthGrad { float depth_grad_xy[]; };
-layout(std430, set = 0, binding = 5) readonly buffer Normal { float normal_xyz[]; };
-layout(std430, set = 0, binding = 6) readonly buffer Mesh { uint mesh[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer Sigma2 { float sigma2[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
+layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
+layout(set = 0, binding = 2) uniform samplerBuffer moments_direct;
+layout(set = 0, binding = 3) uniform samplerBuffer moments_indirect;
+layout(set = 0, binding = 4) uniform samplerBuffer surface;
+layout(set = 0, binding = 5) uniform samplerBuffer depth_grad;
+layout(std430, set = 0, binding = 6) writeonly buffer DirectOut { vec4 direct_out[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer IndirectOut { vec4 indirect_out[]; };
 
 layout(push_constant) uniform Push { VariancePush frame; };
 
-// The planes' accessors (Plane::at, inside, SurfacePlanes::covered): element y * width + x.
-uint index_of(int x, int y) { return uint(y) * frame.width + uint(x); }
+// The planes' accessors (Plane::at, inside): element y * width + x.
+int index_of(int x, int y) { return y * int(frame.width) + x; }
 bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.width) && y < int(frame.height); }
-bool covered(int x, int y) { return mesh[index_of(x, y)] != kVarianceInvalidId; }
-vec2 depth_grad_at(int x, int y) {
-  const uint i = 2u * index_of(x, y);
-  return vec2(depth_grad_xy[i], depth_grad_xy[i + 1u]);
-}
-vec3 normal_at(int x, int y) {
-  const uint i = 3u * index_of(x, y);
-  return vec3(normal_xyz[i], normal_xyz[i + 1u], normal_xyz[i + 2u]);
-}
 
 // --- edge_stopping.h / edge_stopping.cpp ---
 
@@ -70,50 +63,66 @@ float variance_from_moments(float mu1, float mu2) {
   return sigma2;
 }
 
-float variance_spatial_pixel(int x, int y) {
-  const float z_p = depth[index_of(x, y)];
-  const vec2 grad_z_p = depth_grad_at(x, y);
-  const vec3 n_p = normal_at(x, y);
-  precise float sum_w = 0.0, mu1 = 0.0, mu2 = 0.0;
+// The moments of both streams: (mu1' direct, mu2' direct, mu1' indirect, mu2' indirect).
+vec4 moments_at(int i) { return vec4(texelFetch(moments_direct, i).xy, texelFetch(moments_indirect, i).xy); }
+
+// sigma'^2 of both streams from the 7x7 bilateral average of their moments.
+vec2 variance_spatial_pixel(int x, int y, vec4 s_p) {
+  const float z_p = s_p.w;
+  const vec2 grad_z_p = texelFetch(depth_grad, index_of(x, y)).xy;
+  const vec3 n_p = s_p.xyz;
+  precise float sum_w = 0.0;
+  precise vec4 mu = vec4(0.0);  // sum w mu1', sum w mu2' of the direct stream, then of the indirect
   for (int dy = -kVarianceSpatialRadius; dy <= kVarianceSpatialRadius; ++dy)
     for (int dx = -kVarianceSpatialRadius; dx <= kVarianceSpatialRadius; ++dx) {
       const int qx = x + dx, qy = y + dy;
       // Taps outside the image or on no surface hold no moments.
-      if (!inside(qx, qy) || !covered(qx, qy)) continue;
-      const uint q = index_of(qx, qy);
+      if (!inside(qx, qy)) continue;
+      const int q = index_of(qx, qy);
+      const vec4 s_q = texelFetch(surface, q);
+      if (!has_surface(s_q)) continue;
       // w_z with p - q = (-dx, -dy) [SVGF17 Eq. 3], w_n [SVGF17 Eq. 4]: "weights driven by depths and
       // world-space normals" [SVGF17 Sec. 4.2].
-      const float w_z = weight_depth(z_p, depth[q], grad_z_p, vec2(-dx, -dy), frame.sigma_z, frame.epsilon);
-      const float w_n = weight_normal(n_p, normal_at(qx, qy), frame.sigma_n);
+      const float w_z = weight_depth(z_p, s_q.w, grad_z_p, vec2(-dx, -dy), frame.sigma_z, frame.epsilon);
+      const float w_n = weight_normal(n_p, s_q.xyz, frame.sigma_n);
       precise float w = w_z * w_n;
       // GPU only: the sums are `precise` (declared above), so w * mu' + sum is not fused into one fma.
       sum_w += w;
-      mu1 += w * moment1[q];
-      mu2 += w * moment2[q];
+      mu += w * moments_at(q);
     }
   // The centre tap has w = 1 (w_z = exp(-0 / epsilon), epsilon > 0 by the table's range), so sum w >= 1
   // unless p's normal is degenerate (zero length: every w_n = 0) or NaN; then the pixel's own moments remain.
-  if (!(sum_w > 0.0)) return variance_from_moments(moment1[index_of(x, y)], moment2[index_of(x, y)]);
+  if (!(sum_w > 0.0)) {
+    const vec4 own = moments_at(index_of(x, y));
+    return vec2(variance_from_moments(own.x, own.y), variance_from_moments(own.z, own.w));
+  }
   // The weighted means of the moments: sum w mu'(q) / sum w.
-  mu1 /= sum_w;
-  mu2 /= sum_w;
-  return variance_from_moments(mu1, mu2);
+  mu /= sum_w;
+  return vec2(variance_from_moments(mu.x, mu.y), variance_from_moments(mu.z, mu.w));
 }
 
-float variance_pixel(int x, int y) {
-  const bool is_covered = covered(x, y);
-  if (!is_covered) return 0.0;  // no surface, no variance
-  const float n = history_length[index_of(x, y)];
+// sigma'^2 of both streams at (x, y).
+vec2 variance_pixel(int x, int y, vec4 s_p) {
+  if (!has_surface(s_p)) return vec2(0.0);  // no surface, no variance
+  const int i = index_of(x, y);
+  const vec4 m_direct = texelFetch(moments_direct, i), m_indirect = texelFetch(moments_indirect, i);
   // "Where our temporal history is limited (<4 frames after a disocclusion), we instead estimate the variance
-  // spatially" [SVGF17 Sec. 4.2]; 4 is variance_min_history.
-  const bool temporal = n >= float(frame.variance_min_history);
-  if (!temporal) return variance_spatial_pixel(x, y);
-  return variance_from_moments(moment1[index_of(x, y)], moment2[index_of(x, y)]);
+  // spatially" [SVGF17 Sec. 4.2]; 4 is variance_min_history. Each stream has its own history length n.
+  const bvec2 temporal = bvec2(m_direct.z >= float(frame.variance_min_history),
+                               m_indirect.z >= float(frame.variance_min_history));
+  const vec2 from_history = vec2(variance_from_moments(m_direct.x, m_direct.y),
+                                 variance_from_moments(m_indirect.x, m_indirect.y));
+  if (all(temporal)) return from_history;
+  const vec2 spatial = variance_spatial_pixel(x, y, s_p);
+  return vec2(temporal.x ? from_history.x : spatial.x, temporal.y ? from_history.y : spatial.y);
 }
 
 void main() {
   // This invocation's pixel; the last tiles overhang the frame.
-  const uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= frame.width || pixel.y >= frame.height) return;
-  sigma2[index_of(int(pixel.x), int(pixel.y))] = variance_pixel(int(pixel.x), int(pixel.y));
+  const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
+  const int i = index_of(pixel.x, pixel.y);
+  const vec2 sigma2 = variance_pixel(pixel.x, pixel.y, texelFetch(surface, i));
+  direct_out[i] = vec4(texelFetch(direct_in, i).rgb, sigma2.x);
+  indirect_out[i] = vec4(texelFetch(indirect_in, i).rgb, sigma2.y);
 }

@@ -2,7 +2,8 @@
 // history (pixel centre + m - (j_prev - j_cur)), fetch it bilinearly, bound it by the current 3x3 YCoCg box
 // (clip towards the mean, or clamp), blend alpha * current + (1 - alpha) * history. Missing or off-screen
 // history: the current colour. One invocation per pixel.
-//   in:  bindings 0-2: current, history, motion; out: binding 3: output. Layout: taa_shared.h.
+//   in:  bindings 0-2: current, history (colour records), motion; out: binding 3: output. Layout:
+//   filters/svgf/planes_shared.h, taa_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction changes the rounding; the C++ rounds
 // after each operation in the same order.
 #version 450
@@ -12,22 +13,17 @@
 
 layout(local_size_x = kTaaGroupSizeX, local_size_y = kTaaGroupSizeY) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Current { float current_rgb[]; };
-layout(std430, set = 0, binding = 1) readonly buffer History { float history_rgb[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Motion { float motion_xy[]; };
-layout(std430, set = 0, binding = 3) writeonly buffer Output { float output_rgb[]; };
+layout(set = 0, binding = 0) uniform samplerBuffer current_in;
+layout(set = 0, binding = 1) uniform samplerBuffer history_in;
+layout(set = 0, binding = 2) uniform samplerBuffer motion_in;
+layout(std430, set = 0, binding = 3) writeonly buffer Output { vec4 output_out[]; };
 
 layout(push_constant) uniform Push { TaaPush frame; };
 
 // filters/image.h's at_clamped: the pixel at (x, y) with x, y clamped into the image.
-vec3 current_at_clamped(int x, int y) {
-  const uint i = 3u * uint(clamp(y, 0, int(frame.height) - 1) * int(frame.width) + clamp(x, 0, int(frame.width) - 1));
-  return vec3(current_rgb[i], current_rgb[i + 1u], current_rgb[i + 2u]);
-}
-vec3 history_at_clamped(int x, int y) {
-  const uint i = 3u * uint(clamp(y, 0, int(frame.height) - 1) * int(frame.width) + clamp(x, 0, int(frame.width) - 1));
-  return vec3(history_rgb[i], history_rgb[i + 1u], history_rgb[i + 2u]);
-}
+int index_clamped(int x, int y) { return clamp(y, 0, int(frame.height) - 1) * int(frame.width) + clamp(x, 0, int(frame.width) - 1); }
+vec3 current_at_clamped(int x, int y) { return texelFetch(current_in, index_clamped(x, y)).rgb; }
+vec3 history_at_clamped(int x, int y) { return texelFetch(history_in, index_clamped(x, y)).rgb; }
 
 vec3 rgb_to_ycocg(vec3 rgb) {
   // [Malvar and Sullivan 2003]: Y = R/4 + G/2 + B/4, Co = R/2 - B/2, Cg = -R/4 + G/2 - B/4.
@@ -92,8 +88,7 @@ vec3 taa_pixel(int x, int y) {
   const vec3 c = current_at_clamped(x, y);
 
   // 1. Reprojection: where this pixel's content was in the last output [Karis14; TRMV21 Eq. 1 for m].
-  const uint m = 2u * (uint(y) * frame.width + uint(x));
-  const vec2 q = taa_history_position(x, y, vec2(motion_xy[m], motion_xy[m + 1u]));
+  const vec2 q = taa_history_position(x, y, texelFetch(motion_in, y * int(frame.width) + x).xy);
   const bool history_on_screen = frame.has_history != 0u && q.x >= 0.0 && q.y >= 0.0 && q.x < float(frame.width) &&
                                  q.y < float(frame.height);
   if (!history_on_screen) return c;  // no history to trust: the current colour alone
@@ -132,9 +127,5 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
   const vec3 out_rgb = taa_pixel(int(pixel.x), int(pixel.y));
-  // The pixel's first float: 3 floats (R, G, B) per pixel, row-major (taa_shared.h).
-  const uint i = 3u * (pixel.y * frame.width + pixel.x);
-  output_rgb[i] = out_rgb.r;
-  output_rgb[i + 1u] = out_rgb.g;
-  output_rgb[i + 2u] = out_rgb.b;
+  output_out[pixel.y * frame.width + pixel.x] = vec4(out_rgb, 0.0);
 }

@@ -1,12 +1,10 @@
-// TAA [Karis14; the last pass of SVGF17 Sec. 3]: what its C++ (taa.cpp, gpu/taa_gpu.cpp) and GLSL (taa.comp)
+// TAA [Karis14; the last pass of SVGF17 Sec. 3]: what its C++ (taa.cpp, gpu/taa_gpu.cpp, gpu/svgf_shaders.cpp) and GLSL (taa.comp)
 // share, written once: the workgroup size and the push-constant block. Both compilers include this file; GLSL
 // has the C preprocessor, and core/shader_shared.h maps the types.
 //
-// Buffer layout of the port (std430, set 0): binding 0 is the current colour, binding 1 the history (a 1-float
-// placeholder when has_history is 0), binding 2 the motion, binding 3 the output. Colours are float arrays with
-// 3 floats per pixel, R G B, pixel (x, y) at floats 3 * (y * width + x) + 0..2: exactly RgbPlane::data; motion
-// has 2 floats per pixel, X Y, at 2 * (y * width + x) + 0..1: exactly Vec2Plane::data (glm::vec2 is 2 packed
-// floats). All planes are row-major, y down, of size width x height.
+// Bindings (layout: filters/svgf/planes_shared.h): 0 the current colour record, 1 the history colour record (one
+// unread texel when has_history is 0), 2 the motion (RG32F), texel buffers; 3 the output colour record written.
+// All planes are row-major, y down, of size width x height.
 #ifndef RTDR_FILTERS_TAA_TAA_SHARED_H
 #define RTDR_FILTERS_TAA_TAA_SHARED_H
 

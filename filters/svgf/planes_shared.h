@@ -1,0 +1,41 @@
+// How the SVGF shader ports keep planes on the GPU, written once for the C++ that packs and unpacks them
+// (gpu/svgf_planes.h) and the GLSL that reads them (filters/svgf/*.comp). Both compilers include this file.
+//
+// Every plane is row-major, pixel (x, y) at texel y * width + x, and fp32 throughout (no packing changes a value:
+// the ports stay within the error bounds of docs/equations.md). Inputs are texel buffers, read with texelFetch;
+// outputs are std430 arrays of the same texels. Several planes share one RGBA32F texel, so that a tap costs one
+// fetch per record rather than one per plane (docs/performance.md, "Lavapipe"):
+//   surface      RGBA32F  (n.x, n.y, n.z, z): world normal and linear view depth; z = kNoSurfaceDepth (-1) where
+//                         the pixel has no surface (a visible surface always has z > 0, in front of the camera)
+//   illumination RGBA32F  (r, g, b, variance): one stream's colour and its variance estimate; the noisy input and
+//                         the temporal output carry variance 0 (the variance pass fills it in)
+//   moments      RGBA32F  (mu1', mu2', n, 0): the temporal pass's luminance moments and history length
+//   colour       RGBA32F  (r, g, b, 0): albedo, emission, remodulated colour, display colour
+//   depth_grad   RG32F    (dz/dx, dz/dy);  motion RG32F (pixels);  mesh R32UI (id.mesh, RTDR_INVALID_ID: none)
+// The direct and the indirect stream go through each pass in the same dispatch: they share the G-buffer reads
+// and every edge-stopping and reprojection term that depends on the G-buffer alone.
+#ifndef RTDR_FILTERS_SVGF_PLANES_SHARED_H
+#define RTDR_FILTERS_SVGF_PLANES_SHARED_H
+
+#include "core/shader_shared.h"
+
+#ifdef __cplusplus
+namespace rtdr {
+#endif
+
+// The depth a surface record holds where the pixel has no surface.
+RTDR_SHARED_CONST float kNoSurfaceDepth = -1.0f;
+
+// Every SVGF port runs one invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's
+// subgroup size.
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeX = 8;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeY = 8;
+
+#ifdef __cplusplus
+}  // namespace rtdr
+#else
+// SurfacePlanes::covered: the surface record's pixel has a surface.
+bool has_surface(vec4 surface) { return surface.w != kNoSurfaceDepth; }
+#endif
+
+#endif  // RTDR_FILTERS_SVGF_PLANES_SHARED_H

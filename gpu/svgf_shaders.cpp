@@ -1,0 +1,71 @@
+// The SVGF ports' pipelines and their dispatches. See svgf_shaders.h.
+#include "gpu/svgf_shaders.h"
+
+#include <vector>
+
+namespace rtdr {
+
+namespace {
+
+// `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port.
+std::vector<Binding> bindings(uint32_t texel, uint32_t storage) {
+  std::vector<Binding> kinds(texel, Binding::Texel);
+  kinds.insert(kinds.end(), storage, Binding::Storage);
+  return kinds;
+}
+
+uint32_t groups_x(uint32_t width) { return group_count(width, kSvgfGroupSizeX); }
+uint32_t groups_y(uint32_t height) { return group_count(height, kSvgfGroupSizeY); }
+
+}  // namespace
+
+SvgfShaders::SvgfShaders(VulkanContext& context)
+    : temporal_(context, load_shader("temporal"), bindings(kTemporalTexelBindings, kTemporalStorageBindings),
+                sizeof(TemporalPush)),
+      variance_(context, load_shader("variance"), bindings(6, 2), sizeof(VariancePush)),
+      atrous_(context, load_shader("atrous"), bindings(4, 3), sizeof(AtrousPush)),
+      modulate_(context, load_shader("modulate"), bindings(4, 1), sizeof(ModulatePush)),
+      tonemap_(context, load_shader("tonemap"), bindings(1, 1), sizeof(TonemapPush)),
+      taa_(context, load_shader("taa"), bindings(3, 1), sizeof(TaaPush)) {}
+
+void SvgfShaders::temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
+                           Streams illumination_out, Streams moments_out, const TemporalPush& push) const {
+  batch.dispatch(temporal_,
+                 {noisy.direct, noisy.indirect, g.surface, g.depth_grad, g.mesh, g.motion, prev.illumination.direct,
+                  prev.illumination.indirect, prev.moments.direct, prev.moments.indirect, prev.surface, prev.mesh,
+                  illumination_out.direct, illumination_out.indirect, moments_out.direct, moments_out.indirect},
+                 &push, groups_x(push.width), groups_y(push.height), "temporal");
+}
+
+void SvgfShaders::variance(ComputeBatch& batch, Streams illumination, Streams moments, const GBufferPlanes& g,
+                           Streams out, const VariancePush& push) const {
+  batch.dispatch(variance_,
+                 {illumination.direct, illumination.indirect, moments.direct, moments.indirect, g.surface,
+                  g.depth_grad, out.direct, out.indirect},
+                 &push, groups_x(push.width), groups_y(push.height), "variance");
+}
+
+void SvgfShaders::atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out,
+                         const GpuBuffer& prefiltered, const AtrousPush& push) const {
+  batch.dispatch(atrous_, {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered},
+                 &push, groups_x(push.width), groups_y(push.height), "atrous");
+}
+
+void SvgfShaders::modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
+                           const GpuBuffer& colour, const ModulatePush& push) const {
+  batch.dispatch(modulate_, {filtered.direct, filtered.indirect, &albedo, &emission, &colour}, &push,
+                 groups_x(push.width), groups_y(push.height), "modulate");
+}
+
+void SvgfShaders::tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display,
+                          const TonemapPush& push) const {
+  batch.dispatch(tonemap_, {&colour, &display}, &push, groups_x(push.width), groups_y(push.height), "tonemap");
+}
+
+void SvgfShaders::taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,
+                      const GpuBuffer& out, const TaaPush& push) const {
+  batch.dispatch(taa_, {&current, &history, &motion, &out}, &push, group_count(push.width, kTaaGroupSizeX),
+                 group_count(push.height, kTaaGroupSizeY), "taa");
+}
+
+}  // namespace rtdr

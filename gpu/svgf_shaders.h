@@ -1,0 +1,63 @@
+// The SVGF ports' compute pipelines, created once, and one function per pass that records its dispatch into a
+// ComputeBatch. Every buffer is a plane in the layout of filters/svgf/planes_shared.h; the per-stream passes take
+// the direct and the indirect stream together (Streams). The shaders are filters/svgf/*.comp and filters/taa/taa.comp;
+// each pass's bindings are listed in its <stem>_shared.h.
+#pragma once
+
+#include "filters/svgf/atrous_shared.h"
+#include "filters/svgf/modulate_shared.h"
+#include "filters/svgf/temporal_shared.h"
+#include "filters/svgf/tonemap_shared.h"
+#include "filters/svgf/variance_shared.h"
+#include "filters/taa/taa_shared.h"
+#include "gpu/compute.h"
+
+namespace rtdr {
+
+// One plane per stream: [0] direct, [1] indirect.
+struct Streams {
+  const GpuBuffer* direct;
+  const GpuBuffer* indirect;
+};
+
+// The current G-buffer: surface records, depth gradient, mesh ids, motion.
+struct GBufferPlanes {
+  const GpuBuffer* surface;
+  const GpuBuffer* depth_grad;
+  const GpuBuffer* mesh;
+  const GpuBuffer* motion;
+};
+
+// What temporal accumulation reads of the previous frame.
+struct HistoryPlanes {
+  Streams illumination;  // C'_{i-1}
+  Streams moments;       // mu1', mu2', n
+  const GpuBuffer* surface;
+  const GpuBuffer* mesh;
+};
+
+class SvgfShaders {
+ public:
+  explicit SvgfShaders(VulkanContext& context);
+
+  // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments.
+  void temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
+                Streams illumination_out, Streams moments_out, const TemporalPush& push) const;
+  // [SVGF17 Sec. 4.2]: illumination C' and moments -> illumination (C', sigma'^2).
+  void variance(ComputeBatch& batch, Streams illumination, Streams moments, const GBufferPlanes& g, Streams out,
+                const VariancePush& push) const;
+  // [SVGF17 Sec. 4.3, 4.4, Eq. 1-5]: one a-trous level; `prefiltered` receives g3x3(Var) when push.keep_prefiltered.
+  void atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out, const GpuBuffer& prefiltered,
+              const AtrousPush& push) const;
+  // [SVGF17 Sec. 3]: colour = emission + albedo (direct + indirect).
+  void modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
+                const GpuBuffer& colour, const ModulatePush& push) const;
+  void tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display, const TonemapPush& push) const;
+  void taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,
+           const GpuBuffer& out, const TaaPush& push) const;
+
+ private:
+  ComputePipeline temporal_, variance_, atrous_, modulate_, tonemap_, taa_;
+};
+
+}  // namespace rtdr

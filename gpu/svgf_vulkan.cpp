@@ -1,0 +1,150 @@
+// The SVGF pipeline on a Vulkan device. See svgf_vulkan.h; the golden pipeline it follows is filters/svgf/svgf.cpp.
+#include "gpu/svgf_vulkan.h"
+
+#include "core/error.h"
+#include "gpu/svgf_planes.h"
+
+#include <chrono>
+#include <string>
+
+namespace rtdr {
+
+namespace {
+
+using PlanePtr = std::unique_ptr<GpuBuffer>;
+
+// Dispatches per frame: temporal, variance, the levels, modulate, tonemap, TAA.
+uint32_t dispatches_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_levels); }
+
+}  // namespace
+
+// Every device plane. [parity] pairs alternate between frames: [frame parity] is written this frame, the other
+// holds the previous frame's (the history). [stream]: 0 direct, 1 indirect.
+struct SvgfVulkan::Buffers {
+  int width, height;
+  // This frame's inputs, packed by the host.
+  PlanePtr noisy[2], albedo, emission, depth_grad, motion;
+  // Histories and the G-buffer they were made on.
+  PlanePtr surface[2], mesh[2], moments[2][2], history[2][2], display[2];
+  // This frame's intermediates.
+  PlanePtr temporal[2], variance[2], level[2][2], colour, tonemapped, prefiltered;
+
+  Buffers(VulkanContext& context, int w, int h) : width(w), height(h) {
+    const auto rgba = [&] { return plane_buffer(context, w, h, TexelFormat::RGBA32F); };
+    for (int s = 0; s < 2; ++s) {
+      noisy[s] = rgba();
+      temporal[s] = rgba();
+      variance[s] = rgba();
+      surface[s] = rgba();
+      mesh[s] = plane_buffer(context, w, h, TexelFormat::R32UI);
+      display[s] = rgba();
+      for (int k = 0; k < 2; ++k) moments[s][k] = rgba(), history[s][k] = rgba(), level[s][k] = rgba();
+    }
+    albedo = rgba();
+    emission = rgba();
+    colour = rgba();
+    tonemapped = rgba();
+    depth_grad = plane_buffer(context, w, h, TexelFormat::RG32F);
+    motion = plane_buffer(context, w, h, TexelFormat::RG32F);
+    prefiltered = plane_buffer(context, w, h, TexelFormat::RG32F);
+  }
+  static Streams streams(const PlanePtr (&planes)[2]) { return {planes[0].get(), planes[1].get()}; }
+};
+
+SvgfVulkan::SvgfVulkan(VulkanContext& context, const SvgfOptions& options)
+    : context_(context),
+      options_(options),
+      shaders_(context),
+      batch_(context, dispatches_per_frame(options.svgf)) {
+  validate(options_.svgf);
+  validate(options_.tonemap);
+  validate(options_.taa_params);
+  if (!options_.temporal || options_.spatial != SpatialFilter::Atrous || !options_.taa)
+    throw Error("method " + options_.name + " has no Vulkan port: --backend vulkan runs svgf only");
+}
+
+SvgfVulkan::~SvgfVulkan() = default;
+
+void SvgfVulkan::reset() { frames_ = 0; }
+
+Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
+  if (dump) throw Error("--dump-passes needs --backend cpu: the Vulkan pipeline keeps its buffers on the device");
+  times_.clear();
+  const int w = in.width(), h = in.height();
+  if (buffers_ && frames_ > 0 && (buffers_->width != w || buffers_->height != h))
+    throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(w) + "x" +
+                std::to_string(h) + ", was " + std::to_string(buffers_->width) + "x" +
+                std::to_string(buffers_->height) + ")");
+  if (!buffers_ || buffers_->width != w || buffers_->height != h) buffers_ = std::make_unique<Buffers>(context_, w, h);
+  Buffers& b = *buffers_;
+  const int cur = frames_ & 1, prev = cur ^ 1;
+  const bool has_history = frames_ > 0;
+
+  // 1. Upload: the host packs this frame's planes into the device's records.
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurfacePlanes surface = SurfacePlanes::from_frame(in);
+  pack_rgbw(rgb_plane(in, "direct"), nullptr, *b.noisy[0]);
+  pack_rgbw(rgb_plane(in, "indirect"), nullptr, *b.noisy[1]);
+  pack_rgbw(rgb_plane(in, "albedo"), nullptr, *b.albedo);
+  pack_rgbw(rgb_plane(in, "emission"), nullptr, *b.emission);
+  pack_surface(surface, *b.surface[cur]);
+  pack_ids(surface.mesh, *b.mesh[cur]);
+  pack_vec2(surface.depth_grad, *b.depth_grad);
+  pack_vec2(surface.motion, *b.motion);
+  const auto t1 = std::chrono::steady_clock::now();
+
+  // 2. One batch of dispatches, in SvgfFilter's order [SVGF17 Sec. 3, 4].
+  const SvgfParams& p = options_.svgf;
+  const uint32_t uw = uint32_t(w), uh = uint32_t(h);
+  const GBufferPlanes g{b.surface[cur].get(), b.depth_grad.get(), b.mesh[cur].get(), b.motion.get()};
+  const HistoryPlanes history{Buffers::streams(b.history[prev]), Buffers::streams(b.moments[prev]),
+                              b.surface[prev].get(), b.mesh[prev].get()};
+  // The colour history is the output of level history_level, or the temporal output when that level is not run.
+  const bool history_from_levels = p.history_level < p.atrous_levels;
+  const Streams temporal_out = history_from_levels ? Buffers::streams(b.temporal) : Buffers::streams(b.history[cur]);
+  shaders_.temporal(batch_, Buffers::streams(b.noisy), g, history, temporal_out, Buffers::streams(b.moments[cur]),
+                    TemporalPush{uw, uh, has_history ? uw : 0u, has_history ? uh : 0u, has_history ? 1u : 0u,
+                                 uint32_t(p.max_history), p.alpha, p.alpha_moments, p.temporal_depth_relative,
+                                 p.temporal_normal_cosine});
+  shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, Buffers::streams(b.variance),
+                    VariancePush{uw, uh, uint32_t(p.variance_min_history), p.sigma_z, p.sigma_n, p.epsilon});
+  Streams filtered = p.atrous_levels > 0 ? Buffers::streams(b.variance) : temporal_out;
+  for (int level = 0; level < p.atrous_levels; ++level) {
+    const Streams out = level == p.history_level ? Buffers::streams(b.history[cur]) : Buffers::streams(b.level[level & 1]);
+    shaders_.atrous(batch_, filtered, g, out, *b.prefiltered,
+                    AtrousPush{uw, uh, level, p.kernel_size, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u});
+    filtered = out;
+  }
+  shaders_.modulate(batch_, filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});
+  shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{uw, uh, options_.tonemap.exposure});
+  // Without a TAA history the TAA shader returns its input: the first frame's display is the tone-mapped colour.
+  const TaaParams& t = options_.taa_params;
+  shaders_.taa(batch_, *b.tonemapped, *b.display[prev], *b.motion, *b.display[cur],
+               TaaPush{.width = uw,
+                       .height = uh,
+                       .alpha = t.alpha,
+                       .clip_history = t.clip_history ? 1u : 0u,
+                       .jitter_current = {0.0f, 0.0f},
+                       .jitter_previous = {0.0f, 0.0f},
+                       .has_history = has_history ? 1u : 0u,
+                       .padding = 0});
+  batch_.run();
+  ++frames_;
+  for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
+
+  // 3. Download.
+  const auto t2 = std::chrono::steady_clock::now();
+  Frame out(w, h);
+  out.source = in.source;
+  set_rgb_plane(out, "color", unpack_rgb(*b.colour, w, h));
+  set_rgb_plane(out, "display", unpack_rgb(*b.display[cur], w, h));
+  const auto t3 = std::chrono::steady_clock::now();
+  times_["transfer"] = std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
+  return out;
+}
+
+Probe SvgfVulkan::probe(const std::string&, int, int, const std::string&, int) const {
+  throw Error("rtdr probe runs the golden passes: use --backend cpu");
+}
+
+}  // namespace rtdr

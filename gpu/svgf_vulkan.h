@@ -1,0 +1,45 @@
+// SVGF, the whole pipeline, on a Vulkan device: the Method behind `rtdr filter --backend vulkan`. The same passes
+// in the same order as SvgfFilter (filters/svgf/svgf.h) with method "svgf" - temporal accumulation, variance, the
+// a-trous levels (the level `history_level` kept as next frame's colour history), remodulation, tone mapping and
+// TAA - each one dispatch of the ports in filters/svgf/*.comp and filters/taa/taa.comp, both streams at once.
+//
+// Every history stays on the device between frames (colour history, moments, the previous G-buffer, the TAA
+// history): per frame the host uploads the input frame's planes, runs one batch of 5 + atrous_levels dispatches,
+// and reads back the colour and the display colour. Buffers are made for the first frame's size; a later frame
+// of another size throws, as SvgfFilter does.
+//
+// pass_times(): each pass's device time (timestamps), summed over its dispatches and streams, plus "transfer": the
+// host's wall time to pack the inputs and unpack the outputs. Intermediate buffers are not dumped and passes are
+// not probed: those stay with the golden SvgfFilter (--backend cpu).
+#pragma once
+
+#include "filters/method.h"
+#include "filters/svgf/svgf.h"
+#include "gpu/svgf_shaders.h"
+
+#include <memory>
+
+namespace rtdr {
+
+class SvgfVulkan : public Method {
+ public:
+  // `options` must be the "svgf" configuration's stages (temporal, a-trous, TAA); its parameters may be any.
+  SvgfVulkan(VulkanContext& context, const SvgfOptions& options);
+  ~SvgfVulkan() override;
+  std::string name() const override { return options_.name; }
+  Frame filter(const Frame& in, Frame* dump) override;
+  void reset() override;
+  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
+  std::vector<std::string> probe_passes() const override { return {}; }
+
+ private:
+  struct Buffers;  // every device plane, made for one frame size
+  VulkanContext& context_;
+  SvgfOptions options_;
+  SvgfShaders shaders_;
+  ComputeBatch batch_;
+  std::unique_ptr<Buffers> buffers_;
+  int frames_ = 0;  // frames since the last reset: 0 means no history
+};
+
+}  // namespace rtdr

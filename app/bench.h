@@ -19,7 +19,8 @@ struct BenchOptions {
   int runs = 20;
   int warmup = 3;
   std::string csv;
-  std::string method = "svgf";  // --stage filter
+  std::string method = "svgf";   // --stage filter
+  std::string backend = "cpu";   // --stage filter: cpu, vulkan or cpu,vulkan
 };
 
 // The median of a non-empty set of measurements (the upper one of the middle two for an even count).

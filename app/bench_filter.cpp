@@ -1,11 +1,14 @@
 // rtdr bench --stage filter: a denoising method (--method, default svgf) on rendered frames of each scene
-// at --size, per pass: the median over --runs frames of a sequence, after at least 5 frames (or --warmup)
-// that build the history, so the variance estimate is the temporal one of the steady state (SVGF17 Sec. 4.2
-// switches from the 7x7 spatial estimate after 4 frames). Issue target: the whole SVGF, direct and indirect,
-// at 1280x720 on 2 cores in at most 2 s.
+// at --size, per pass, on each back end of --backend (cpu, vulkan, or cpu,vulkan in one run): the median over
+// --runs frames of a sequence, after at least 5 frames (or --warmup) that build the history, so the variance
+// estimate is the temporal one of the steady state (SVGF17 Sec. 4.2 switches from the 7x7 spatial estimate after
+// 4 frames). CPU pass times are wall times; Vulkan pass times are device timestamps, and "transfer" is the host's
+// packing of the inputs and unpacking of the outputs (not part of "total"). With two back ends, each pass's
+// speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and indirect, at 1280x720 on 2 cores in at most
+// 2 s (cpu); the Vulkan ports at least 5x faster than the cpu passes on lavapipe (issue 6).
+#include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
-#include "filters/method.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -15,30 +18,74 @@
 
 namespace rtdr {
 
+namespace {
+
+// Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..].
+std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup) {
+  std::map<std::string, std::vector<double>> times;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    method.filter(frames[f]);
+    if (int(f) < warmup) continue;  // history still building: not timed
+    double total = 0.0;
+    for (const auto& [pass, ms] : method.pass_times()) {
+      times[pass].push_back(ms);
+      if (pass != "transfer") total += ms;
+    }
+    times["total"].push_back(total);
+  }
+  std::map<std::string, double> medians;
+  for (const auto& [pass, ms] : times) medians[pass] = median(ms);
+  return medians;
+}
+
+}  // namespace
+
 void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
+  const std::vector<std::string> backends = parse_backends(o.backend);
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
-    // A short sequence, rendered once (1 spp); the method then filters it frame after frame.
+    // A short sequence, rendered once (1 spp); each back end then filters it frame after frame.
     const int warmup = std::max(5, o.warmup);
     std::vector<Frame> frames;
     for (int f = 0; f < warmup + o.runs; ++f) frames.push_back(render_frame(scene, f, size.width, size.height, {}));
-    const std::unique_ptr<Method> method = make_method(o.method);
-    std::map<std::string, std::vector<double>> times;
-    for (size_t f = 0; f < frames.size(); ++f) {
-      method->filter(frames[f]);
-      if (int(f) < warmup) continue;  // history still building: not timed
-      double total = 0.0;
-      for (const auto& [pass, ms] : method->pass_times()) times[pass].push_back(ms), total += ms;
-      times["total"].push_back(total);
+    std::map<std::string, std::map<std::string, double>> medians;  // backend -> pass -> ms
+    std::string devices;
+    for (const std::string& backend : backends) {
+      const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
+      if (m.context) devices += ", vulkan device " + m.context->device_name();
+      medians[backend] = time_passes(*m.method, frames, warmup);
     }
-    std::printf("%s on %s at %dx%d, %d threads: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
-                size.width, size.height, thread_count(), o.runs);
-    for (const auto& [pass, ms] : times) {
-      const double median_ms = median(ms);
-      std::printf("  %-10s %10.1f\n", pass.c_str(), median_ms);
-      if (csv)
-        *csv << "filter:" << o.method << ',' << name << ',' << size.width << ',' << size.height << ',' << thread_count()
-             << ",ms_" << pass << ',' << median_ms << '\n';
+    std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
+                size.width, size.height, thread_count(), devices.c_str(), o.runs);
+    std::printf("  %-10s", "pass");
+    for (const std::string& backend : backends) std::printf(" %10s", backend.c_str());
+    const bool compare = medians.count("cpu") && medians.count("vulkan");
+    if (compare) std::printf(" %10s", "cpu/vulkan");
+    std::printf("\n");
+    std::map<std::string, bool> passes;
+    for (const auto& [backend, times] : medians)
+      for (const auto& [pass, ms] : times) passes[pass] = true;
+    for (const auto& [pass, unused] : passes) {
+      std::printf("  %-10s", pass.c_str());
+      for (const std::string& backend : backends) {
+        const auto it = medians[backend].find(pass);
+        if (it == medians[backend].end()) {
+          std::printf(" %10s", "-");
+          continue;
+        }
+        std::printf(" %10.1f", it->second);
+        if (csv)
+          *csv << "filter:" << o.method << ':' << backend << ',' << name << ',' << size.width << ',' << size.height
+               << ',' << thread_count() << ",ms_" << pass << ',' << it->second << '\n';
+      }
+      if (compare && medians["cpu"].count(pass) && medians["vulkan"].count(pass) && medians["vulkan"][pass] > 0.0) {
+        const double speedup = medians["cpu"][pass] / medians["vulkan"][pass];
+        std::printf(" %9.1fx", speedup);
+        if (csv)
+          *csv << "filter:" << o.method << ":cpu/vulkan," << name << ',' << size.width << ',' << size.height << ','
+               << thread_count() << ",speedup_" << pass << ',' << speedup << '\n';
+      }
+      std::printf("\n");
     }
   }
 }

@@ -3,7 +3,8 @@
 //   --stage raster: visibility buffer, G-buffer resolve and motion back-projection (bench_raster.cpp)
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
-//   --stage filter: a denoising method per pass on a rendered sequence (bench_filter.cpp)
+//   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
+//                   default stage when --backend is given
 #include "app/bench.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -56,7 +57,15 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 1000))->capture_default_str();
   sub->add_option("--csv", o->csv, "also write the timings to this CSV file");
   sub->add_option("--method", o->method, "the method --stage filter times (see rtdr filter)")->capture_default_str();
-  return {sub, [o] { run_bench(*o); }};
+  sub->add_option("--backend", o->backend, "--stage filter: cpu, vulkan, or cpu,vulkan to compare them")
+      ->capture_default_str();
+  return {sub, [o, sub] {
+            // --backend alone means the filter stage, on pillars, 5 runs (a 1080p CPU frame takes seconds).
+            if (sub->count("--backend") > 0 && sub->count("--stage") == 0) o->stage = "filter";
+            if (o->stage == "filter" && sub->count("--scenes") == 0) o->scenes = "pillars";
+            if (o->stage == "filter" && sub->count("--runs") == 0) o->runs = 5;
+            run_bench(*o);
+          }};
 }
 
 }  // namespace rtdr

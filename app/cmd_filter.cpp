@@ -1,5 +1,6 @@
 // rtdr filter: runs a denoising method over a rendered sequence and writes the filtered frames.
 // rtdr probe:  runs it up to one frame, then prints every term of one pass at one pixel.
+#include "app/backend.h"
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
@@ -26,6 +27,7 @@ void add_svgf_flags(CLI::App* sub, SvgfParams& p) {
 
 struct FilterOptions {
   std::string method = "svgf";
+  std::string backend = "cpu";
   std::string in, out;
   std::string frames;
   bool dump = false;
@@ -33,7 +35,10 @@ struct FilterOptions {
 };
 
 void run_filter(const FilterOptions& o) {
-  const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  if (o.dump && o.backend != "cpu")
+    throw Error("--dump-passes needs --backend cpu: the Vulkan pipeline keeps its buffers on the device");
+  const BackendMethod backend = make_backend_method(o.backend, o.method, o.params);
+  Method* method = backend.method.get();
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
   make_output_dir(o.out);
 
@@ -41,7 +46,8 @@ void run_filter(const FilterOptions& o) {
   SequenceShape shape;
   for (const SequenceFrame& f : frames) read_filter_input(f.path, shape);
 
-  std::printf("method %s on %zu frame(s) of %s\n%s", method->name().c_str(), frames.size(), o.in.c_str(),
+  std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
+              backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
               o.method == "none" ? "" : describe(o.params).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
@@ -102,6 +108,8 @@ Command add_filter_command(CLI::App& app) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
   sub->add_option("--method", o->method, "svgf, accum, eaw, eaw-accum or none")->capture_default_str();
+  sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports; svgf only)")
+      ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--out", o->out, "output directory (created if missing)")->required();
   sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");

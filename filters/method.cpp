@@ -43,16 +43,20 @@ std::vector<std::string> method_names() {
   return names;
 }
 
-std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params) {
+SvgfOptions method_options(const std::string& name, const SvgfParams& params) {
   for (const MethodEntry& m : registry()) {
     if (name != m.name) continue;
     SvgfOptions options = m.options();
     options.svgf = params;
-    return std::make_unique<SvgfFilter>(options);
+    return options;
   }
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);
+}
+
+std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params) {
+  return std::make_unique<SvgfFilter>(method_options(name, params));
 }
 
 }  // namespace rtdr

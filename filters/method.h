@@ -47,6 +47,10 @@ class Method {
 // unknown name, listing the known ones.
 // `params` are SVGF's tunables (svgf_params.h); methods that do not use one ignore it.
 std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params = {});
+// The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
+// method, gpu/svgf_vulkan.h). Throws like make_method().
+struct SvgfOptions;
+SvgfOptions method_options(const std::string& name, const SvgfParams& params = {});
 std::vector<std::string> method_names();
 
 }  // namespace rtdr

@@ -4,6 +4,7 @@
 // no output files.
 #include "core/exr_io.h"
 #include "core/frame.h"
+#include "gpu/vulkan_context.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -105,6 +106,37 @@ TEST_CASE("rtdr filter writes an EXR with color and display and a PNG per frame"
       CHECK(std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }));
     }
     CHECK(fs::file_size(out / ("frame_000" + std::to_string(f) + ".png")) > 0);
+  }
+}
+
+TEST_CASE("rtdr filter --backend vulkan writes what --backend cpu writes, within the pipeline's bound") {
+  std::string reason;
+  if (!rtdr::VulkanContext::available(&reason)) {
+    WARN("SKIPPED: no Vulkan device: " << reason);
+    return;
+  }
+  const fs::path dir = scratch("backend");
+  for (const std::string backend : {"cpu", "vulkan"}) {
+    const RunResult r = run_rtdr("filter --backend " + backend + " --in " + sequence().string() + " --out " +
+                                     (dir / backend).string(), dir);
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+  }
+  CHECK(files_in(dir / "vulkan") == files_in(dir / "cpu"));
+  for (int f = 0; f < 3; ++f) {
+    const std::string name = "frame_000" + std::to_string(f) + ".exr";
+    const rtdr::Frame cpu = rtdr::read_exr((dir / "cpu" / name).string());
+    const rtdr::Frame gpu = rtdr::read_exr((dir / "vulkan" / name).string());
+    REQUIRE(channels(gpu) == kOutputChannels);
+    // tests/gpu_svgf_test.cpp derives the colour's bound: 2e-3 relative to max(|cpu|, 1e-2).
+    double worst = 0.0;
+    for (const char* c : {"color.R", "color.G", "color.B"}) {
+      const std::vector<float>&a = cpu.float_channel(c).data, &b = gpu.float_channel(c).data;
+      for (size_t i = 0; i < a.size(); ++i)
+        worst = std::max(worst, double(std::abs(a[i] - b[i])) / std::max(double(std::abs(a[i])), 1e-2));
+    }
+    INFO(name << ": colour max relative error " << worst);
+    CHECK(worst <= 2e-3);
   }
 }
 
@@ -223,6 +255,9 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
       "filter --in " + resized.string() + " --out " + out,                              // frame 1 is 16x9
       "filter --in " + seq + " --out " + out + " --method svfg",                        // unknown method
       "filter --in " + seq + " --out " + out + " --sigma_l -1",                         // out of range
+      "filter --in " + seq + " --out " + out + " --backend metal",                      // unknown back end
+      "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // svgf only
+      "filter --in " + seq + " --out " + out + " --backend vulkan --dump-passes",       // dumps: cpu only
       "probe --in " + seq + " --frame 2 --pixel 999,999",                               // outside the frame
       "probe --in " + seq + " --frame 2 --pixel 5,5 --pass nonsense",                   // no such pass
       "probe --in " + seq + " --frame 7 --pixel 5,5",                                   // no such frame

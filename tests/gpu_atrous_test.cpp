@@ -1,5 +1,5 @@
-// Tests of gpu/atrous_gpu.cpp: the Vulkan port of one a-trous level (filters/svgf/prefilter.comp and
-// filters/svgf/atrous.comp) against the golden atrous_level() (filters/svgf/atrous.cpp) on random planes of an
+// Tests of gpu/atrous_gpu.cpp: the Vulkan port of one a-trous level (filters/svgf/atrous.comp, its variance
+// prefilter included) against the golden atrous_level() (filters/svgf/atrous.cpp) on random planes of an
 // odd size at levels 0..4 with both kernels, and on a rendered frame, with the validation layer on. Skipped, with
 // a message, where no Vulkan device exists.
 //

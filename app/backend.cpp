@@ -1,0 +1,37 @@
+// Choosing the back end a method runs on. See backend.h.
+#include "app/backend.h"
+
+#include "core/error.h"
+#include "filters/svgf/svgf.h"
+#include "gpu/svgf_vulkan.h"
+
+#include <sstream>
+
+namespace rtdr {
+
+BackendMethod make_backend_method(const std::string& backend, const std::string& method, const SvgfParams& params) {
+  BackendMethod m;
+  if (backend == "cpu") {
+    m.method = make_method(method, params);
+  } else if (backend == "vulkan") {
+    const SvgfOptions options = method_options(method, params);  // checks the method's name first
+    m.context = std::make_unique<VulkanContext>();
+    m.method = std::make_unique<SvgfVulkan>(*m.context, options);
+  } else {
+    throw Error("--backend '" + backend + "' is not one of: cpu, vulkan");
+  }
+  return m;
+}
+
+std::vector<std::string> parse_backends(const std::string& text) {
+  std::vector<std::string> backends;
+  std::stringstream ss(text);
+  for (std::string name; std::getline(ss, name, ',');) {
+    if (name != "cpu" && name != "vulkan") throw Error("--backend '" + name + "' is not one of: cpu, vulkan");
+    backends.push_back(name);
+  }
+  if (backends.empty()) throw Error("--backend is empty: give cpu, vulkan or cpu,vulkan");
+  return backends;
+}
+
+}  // namespace rtdr

@@ -13,8 +13,8 @@
 //   colour       RGBA32F  (r, g, b, 0): albedo, emission, remodulated colour, display colour
 //   depth_grad   RG32F    (dz/dx, dz/dy);  motion RG32F (pixels);  mesh R32UI (id.mesh, RTDR_INVALID_ID: none)
 // The direct and the indirect stream, filtered separately [SVGF17 Sec. 3], go through each pass in the same
-// dispatch: they share the G-buffer reads
-// and every edge-stopping and reprojection term that depends on the G-buffer alone.
+// dispatch: they share the G-buffer reads and every edge-stopping and reprojection term that depends on the
+// G-buffer alone.
 #ifndef RTDR_FILTERS_SVGF_PLANES_SHARED_H
 #define RTDR_FILTERS_SVGF_PLANES_SHARED_H
 

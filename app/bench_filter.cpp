@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <set>
 
 namespace rtdr {
 
@@ -62,10 +63,10 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     const bool compare = medians.count("cpu") && medians.count("vulkan");
     if (compare) std::printf(" %10s", "cpu/vulkan");
     std::printf("\n");
-    std::map<std::string, bool> passes;
+    std::set<std::string> passes;
     for (const auto& [backend, times] : medians)
-      for (const auto& [pass, ms] : times) passes[pass] = true;
-    for (const auto& [pass, unused] : passes) {
+      for (const auto& [pass, ms] : times) passes.insert(pass);
+    for (const std::string& pass : passes) {
       std::printf("  %-10s", pass.c_str());
       for (const std::string& backend : backends) {
         const auto it = medians[backend].find(pass);

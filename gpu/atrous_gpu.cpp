@@ -39,12 +39,13 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
 
   const AtrousPush push{uint32_t(w),    uint32_t(h),    level,          params.kernel_size, params.sigma_z,
                         params.sigma_n, params.sigma_l, params.epsilon, 1u};
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.atrous(batch, {in.get(), in.get()}, {surface.get(), grad.get(), nullptr, nullptr},
-                 {out_direct.get(), out_indirect.get()}, *prefiltered, push);
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.atrous(batch, {in.get(), in.get()}, {surface.get(), grad.get(), nullptr, nullptr},
+                       {out_direct.get(), out_indirect.get()}, *prefiltered, push);
+      },
+      ms);
 
   out.color = unpack_rgb(*out_direct, w, h);
   out.variance = unpack_channel(*out_direct, w, h, 4, 3);

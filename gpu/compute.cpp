@@ -11,20 +11,15 @@ namespace rtdr {
 
 namespace {
 
-struct FormatInfo {
-  VkFormat format;
-  size_t floats;  // 32-bit components per texel
-};
-
-FormatInfo format_info(TexelFormat format) {
+VkFormat vk_format(TexelFormat format) {
   switch (format) {
-    case TexelFormat::R32F: return {VK_FORMAT_R32_SFLOAT, 1};
-    case TexelFormat::RG32F: return {VK_FORMAT_R32G32_SFLOAT, 2};
-    case TexelFormat::RGBA32F: return {VK_FORMAT_R32G32B32A32_SFLOAT, 4};
-    case TexelFormat::R32UI: return {VK_FORMAT_R32_UINT, 1};
+    case TexelFormat::R32F: return VK_FORMAT_R32_SFLOAT;
+    case TexelFormat::RG32F: return VK_FORMAT_R32G32_SFLOAT;
+    case TexelFormat::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case TexelFormat::R32UI: return VK_FORMAT_R32_UINT;
     case TexelFormat::None: break;
   }
-  return {VK_FORMAT_UNDEFINED, 1};
+  return VK_FORMAT_UNDEFINED;
 }
 
 // Device-local memory the host can map where the device has it (lavapipe: all of it; GPUs with a resizable BAR),
@@ -40,13 +35,16 @@ uint32_t mappable_memory_type(const VulkanContext& context, uint32_t type_bits) 
 
 }  // namespace
 
+size_t texel_floats(TexelFormat format) {
+  return format == TexelFormat::RGBA32F ? 4 : format == TexelFormat::RG32F ? 2 : 1;
+}
+
 GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format)
     : device_(context.device()), floats_(floats) {
   if (floats == 0) throw Error("GpuBuffer: a buffer needs at least one float");
-  const FormatInfo texel = format_info(format);
-  if (floats % texel.floats != 0)
+  if (floats % texel_floats(format) != 0)
     throw Error("GpuBuffer: " + std::to_string(floats) + " floats are not whole texels of " +
-                std::to_string(texel.floats));
+                std::to_string(texel_floats(format)));
   try {
     VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = floats * sizeof(float);
@@ -64,10 +62,10 @@ GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format)
     void* mapped = nullptr;
     vk_check(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
     mapped_ = static_cast<float*>(mapped);
-    if (texel.format != VK_FORMAT_UNDEFINED) {
+    if (format != TexelFormat::None) {
       VkBufferViewCreateInfo view{.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
       view.buffer = buffer_;
-      view.format = texel.format;
+      view.format = vk_format(format);
       view.range = VK_WHOLE_SIZE;
       vk_check(vkCreateBufferView(device_, &view, nullptr, &view_), "vkCreateBufferView");
     }
@@ -184,7 +182,7 @@ void ComputePipeline::dispatch(const std::vector<const GpuBuffer*>& buffers, con
   ComputeBatch batch(context_, 1);
   batch.dispatch(*this, buffers, push, groups_x, groups_y, "dispatch");
   batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  batch.total_time(ms);
 }
 
 namespace {
@@ -341,6 +339,12 @@ void ComputeBatch::run() {
                           double(ticks[2 * i + 1] - ticks[2 * i]) * double(context_.timestamp_period_ns()) * 1e-6);
   }
   begin();
+}
+
+void ComputeBatch::total_time(double* ms) const {
+  if (!ms || times_.empty()) return;
+  *ms = 0.0;
+  for (const auto& [label, time] : times_) *ms += time;
 }
 
 }  // namespace rtdr

@@ -30,6 +30,8 @@ namespace rtdr {
 
 // The texel formats a GpuBuffer can be viewed with: 1, 2 or 4 floats, or 1 uint, per texel.
 enum class TexelFormat { None, R32F, RG32F, RGBA32F, R32UI };
+// 32-bit components per texel: 1, 2 or 4 (1 for None).
+size_t texel_floats(TexelFormat format);
 
 class GpuBuffer {
  public:
@@ -120,6 +122,9 @@ class ComputeBatch {
   void run();
   // Each dispatch of the last run(): its label and device time in milliseconds (empty without timestamps).
   const std::vector<std::pair<std::string, double>>& times() const { return times_; }
+  // Writes the last run's device time in milliseconds, summed over its dispatches, to *ms; leaves *ms untouched
+  // without timestamps (or when ms is null).
+  void total_time(double* ms) const;
 
  private:
   void begin();

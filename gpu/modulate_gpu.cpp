@@ -29,12 +29,13 @@ RgbPlane remodulate_vulkan(VulkanContext& context, const RgbPlane& direct, const
   pack_rgbw(albedo, nullptr, *albedo_buffer);
   pack_rgbw(emission, nullptr, *emission_buffer);
 
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.modulate(batch, {direct_buffer.get(), indirect_buffer.get()}, *albedo_buffer, *emission_buffer, *colour_buffer,
-                   ModulatePush{uint32_t(w), uint32_t(h)});
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.modulate(batch, {direct_buffer.get(), indirect_buffer.get()}, *albedo_buffer, *emission_buffer,
+                         *colour_buffer, ModulatePush{uint32_t(w), uint32_t(h)});
+      },
+      ms);
   return unpack_rgb(*colour_buffer, w, h);
 }
 

@@ -11,10 +11,6 @@ namespace rtdr {
 
 namespace {
 
-size_t components(TexelFormat format) {
-  return format == TexelFormat::RGBA32F ? 4 : format == TexelFormat::RG32F ? 2 : 1;
-}
-
 // The buffer holds exactly `pixels` records of `floats` floats.
 void check_fits(const GpuBuffer& buffer, size_t pixels, size_t floats, const char* what) {
   if (buffer.floats() != pixels * floats && !(pixels == 0 && buffer.floats() == 1))
@@ -27,7 +23,7 @@ void check_fits(const GpuBuffer& buffer, size_t pixels, size_t floats, const cha
 std::unique_ptr<GpuBuffer> plane_buffer(VulkanContext& context, int width, int height, TexelFormat format) {
   // An empty plane still gets one texel: a binding needs a buffer, and the shaders never read it.
   const size_t pixels = std::max<size_t>(1, size_t(width) * size_t(height));
-  return std::make_unique<GpuBuffer>(context, pixels * components(format), format);
+  return std::make_unique<GpuBuffer>(context, pixels * texel_floats(format), format);
 }
 
 void pack_surface(const SurfacePlanes& s, GpuBuffer& out) {

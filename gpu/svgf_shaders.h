@@ -36,6 +36,13 @@ struct HistoryPlanes {
   const GpuBuffer* mesh;
 };
 
+class SvgfShaders;
+
+// Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
+// then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).
+template <class Record>
+void run_pass(VulkanContext& context, Record&& record, double* ms);
+
 class SvgfShaders {
  public:
   explicit SvgfShaders(VulkanContext& context);
@@ -59,5 +66,14 @@ class SvgfShaders {
  private:
   ComputePipeline temporal_, variance_, atrous_, modulate_, tonemap_, taa_;
 };
+
+template <class Record>
+void run_pass(VulkanContext& context, Record&& record, double* ms) {
+  const SvgfShaders shaders(context);
+  ComputeBatch batch(context, 1);
+  record(shaders, batch);
+  batch.run();
+  batch.total_time(ms);
+}
 
 }  // namespace rtdr

@@ -110,7 +110,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                     VariancePush{uw, uh, uint32_t(p.variance_min_history), p.sigma_z, p.sigma_n, p.epsilon});
   Streams filtered = p.atrous_levels > 0 ? Buffers::streams(b.variance) : temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
-    const Streams out = level == p.history_level ? Buffers::streams(b.history[cur]) : Buffers::streams(b.level[level & 1]);
+    const Streams out =
+        level == p.history_level ? Buffers::streams(b.history[cur]) : Buffers::streams(b.level[level & 1]);
     shaders_.atrous(batch_, filtered, g, out, *b.prefiltered,
                     AtrousPush{uw, uh, level, p.kernel_size, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u});
     filtered = out;

@@ -40,11 +40,12 @@ RgbPlane taa_vulkan(VulkanContext& context, const RgbPlane& current, const RgbPl
                      .jitter_previous = jitter.previous,
                      .has_history = has_history ? 1u : 0u,
                      .padding = 0};
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.taa(batch, *current_buffer, *history_buffer, *motion_buffer, *out_buffer, push);
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.taa(batch, *current_buffer, *history_buffer, *motion_buffer, *out_buffer, push);
+      },
+      ms);
   return unpack_rgb(*out_buffer, w, h);
 }
 

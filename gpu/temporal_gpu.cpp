@@ -73,14 +73,16 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                           params.temporal_depth_relative,
                           params.temporal_normal_cosine};
   // Both streams of the shader read the same planes; the indirect outputs are not read back.
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.temporal(batch, {noisy_buffer.get(), noisy_buffer.get()}, {surface.get(), grad.get(), mesh.get(), motion.get()},
-                   {{prev_color.get(), prev_color.get()}, {prev_moments.get(), prev_moments.get()}, prev_surface.get(),
-                    prev_mesh.get()},
-                   {outputs[0].get(), outputs[1].get()}, {outputs[2].get(), outputs[3].get()}, push);
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.temporal(batch, {noisy_buffer.get(), noisy_buffer.get()},
+                         {surface.get(), grad.get(), mesh.get(), motion.get()},
+                         {{prev_color.get(), prev_color.get()}, {prev_moments.get(), prev_moments.get()},
+                          prev_surface.get(), prev_mesh.get()},
+                         {outputs[0].get(), outputs[1].get()}, {outputs[2].get(), outputs[3].get()}, push);
+      },
+      ms);
 
   out.color = unpack_rgb(*outputs[0], w, h);
   out.moment1 = unpack_channel(*outputs[2], w, h, 4, 0);

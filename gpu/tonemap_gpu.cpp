@@ -16,12 +16,13 @@ RgbPlane tonemap_vulkan(VulkanContext& context, const RgbPlane& colour, const To
              display_buffer = plane_buffer(context, colour.width, colour.height, TexelFormat::RGBA32F);
   pack_rgbw(colour, nullptr, *colour_buffer);
 
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.tonemap(batch, *colour_buffer, *display_buffer,
-                  TonemapPush{uint32_t(colour.width), uint32_t(colour.height), params.exposure});
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.tonemap(batch, *colour_buffer, *display_buffer,
+                        TonemapPush{uint32_t(colour.width), uint32_t(colour.height), params.exposure});
+      },
+      ms);
   return unpack_rgb(*display_buffer, colour.width, colour.height);
 }
 

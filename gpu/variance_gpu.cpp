@@ -13,8 +13,8 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
                            const SvgfParams& params, double* ms) {
   const int w = cur.width(), h = cur.height();
   const auto sized = [&](const auto& p) { return p.width == w && p.height == h; };
-  if (!sized(t.color) || !sized(t.moment1) || !sized(t.moment2) || !sized(t.length) || !sized(cur.depth_grad) || !sized(cur.normal) ||
-      !sized(cur.mesh))
+  if (!sized(t.color) || !sized(t.moment1) || !sized(t.moment2) || !sized(t.length) || !sized(cur.depth_grad) ||
+      !sized(cur.normal) || !sized(cur.mesh))
     throw Error("variance_vulkan: the temporal output and G-buffer planes are not all " + std::to_string(w) + "x" +
                 std::to_string(h));
   if (params.variance_min_history < 0)
@@ -38,12 +38,13 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
   const VariancePush push{uint32_t(w),    uint32_t(h),    uint32_t(params.variance_min_history),
                           params.sigma_z, params.sigma_n, params.epsilon};
   // Both streams of the shader read the same planes; the indirect output is not read back.
-  SvgfShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  shaders.variance(batch, {illumination.get(), illumination.get()}, {moments.get(), moments.get()},
-                   {surface.get(), grad.get(), nullptr, nullptr}, {out_direct.get(), out_indirect.get()}, push);
-  batch.run();
-  if (ms && !batch.times().empty()) *ms = batch.times().front().second;
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.variance(batch, {illumination.get(), illumination.get()}, {moments.get(), moments.get()},
+                         {surface.get(), grad.get(), nullptr, nullptr}, {out_direct.get(), out_indirect.get()}, push);
+      },
+      ms);
   return unpack_channel(*out_direct, w, h, 4, 3);
 }
 

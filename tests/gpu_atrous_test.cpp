@@ -82,12 +82,7 @@ void check_within_bound(const AtrousOutput& gpu, const AtrousOutput& golden) {
 // facing away), a few meshes and about 1 pixel in 8 without a surface.
 SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h);
-  s.depth_grad = Vec2Plane(w, h);
-  s.normal = RgbPlane(w, h);
-  s.mesh = UIntPlane(w, h);
-  s.motion = Vec2Plane(w, h);
+  SurfacePlanes s = blank_surface(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       s.depth.at(x, y) = 2.0f + 0.02f * float(x) + 0.05f * u(rng);
@@ -98,13 +93,6 @@ SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
       if (s.mesh.at(x, y) == kInvalidId) s.depth.at(x, y) = 0.0f;
     }
   return s;
-}
-
-RgbPlane random_colour(std::mt19937& rng, int w, int h) {
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
-  RgbPlane p(w, h);
-  for (glm::vec3& v : p.data) v = glm::vec3(u(rng), u(rng), u(rng));
-  return p;
 }
 
 FloatPlane random_variance(std::mt19937& rng, int w, int h) {
@@ -129,7 +117,7 @@ TEST_CASE("the port matches atrous_level on random planes of an odd size, levels
   std::mt19937 rng(7);
   const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
   const SurfacePlanes s = random_surface(rng, w, h);
-  const RgbPlane colour = random_colour(rng, w, h);
+  const RgbPlane colour = random_plane(rng, w, h, 0.0f, 4.0f);
   const FloatPlane variance = random_variance(rng, w, h);
   for (const int kernel_size : {5, 3})
     for (int level = 0; level <= 4; ++level) {
@@ -171,7 +159,7 @@ TEST_CASE("dispatch time at 64x36 and 320x180") {
   std::mt19937 rng(5);
   for (const auto& [w, h] : {std::pair{64, 36}, std::pair{320, 180}}) {
     const SurfacePlanes s = random_surface(rng, w, h);
-    const RgbPlane colour = random_colour(rng, w, h);
+    const RgbPlane colour = random_plane(rng, w, h, 0.0f, 4.0f);
     const FloatPlane variance = random_variance(rng, w, h);
     const SvgfParams p;
     atrous_level_vulkan(*context, colour, variance, s, 0, p);  // warm-up: lavapipe compiles on first use

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "filters/image.h"
+#include "filters/svgf/svgf_shared.h"
 #include "gpu/vulkan_context.h"
 
 #include <catch2/catch.hpp>
@@ -36,6 +37,17 @@ inline void check_no_validation_messages(const VulkanContext& context) {
   for (const std::string& message : log.messages) UNSCOPED_INFO(message);
   CHECK(log.warnings == 0);
   CHECK(log.errors == 0);
+}
+
+// A w x h G-buffer with every plane allocated and zero, for the tests to fill.
+inline SurfacePlanes blank_surface(int w, int h) {
+  SurfacePlanes s;
+  s.depth = FloatPlane(w, h);
+  s.depth_grad = Vec2Plane(w, h);
+  s.normal = RgbPlane(w, h);
+  s.mesh = UIntPlane(w, h);
+  s.motion = Vec2Plane(w, h);
+  return s;
 }
 
 inline RgbPlane random_plane(std::mt19937& rng, int w, int h, float lo, float hi) {

@@ -63,12 +63,7 @@ void check_within_bound(const TemporalOutput& gpu, const TemporalOutput& golden)
 // about 10% of pixels on no surface, motion within +-1.5 pixels and a few far off screen.
 SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h);
-  s.depth_grad = Vec2Plane(w, h);
-  s.normal = RgbPlane(w, h);
-  s.mesh = UIntPlane(w, h);
-  s.motion = Vec2Plane(w, h);
+  SurfacePlanes s = blank_surface(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const bool none = u(rng) < 0.1f;
@@ -83,19 +78,12 @@ SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
   return s;
 }
 
-RgbPlane random_rgb(std::mt19937& rng, int w, int h, float hi) {
-  std::uniform_real_distribution<float> u(0.0f, hi);
-  RgbPlane p(w, h);
-  for (glm::vec3& v : p.data) v = glm::vec3(u(rng), u(rng), u(rng));
-  return p;
-}
-
 // A random history on `s`: moments with mu2 >= mu1^2, lengths mixing short and long histories.
 TemporalHistory random_history(std::mt19937& rng, const SurfacePlanes& s) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const int w = s.width(), h = s.height();
   const float lengths[] = {1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 12.0f, 32.0f, 200.0f};
-  TemporalHistory prev{random_rgb(rng, w, h, 4.0f), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), s};
+  TemporalHistory prev{random_plane(rng, w, h, 0.0f, 4.0f), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), s};
   for (size_t i = 0; i < prev.moment1.data.size(); ++i) {
     const float mu1 = 4.0f * u(rng);
     prev.moment1.data[i] = mu1;
@@ -121,7 +109,7 @@ TEST_CASE("the temporal port matches temporal_pass on random planes of an odd si
     if (u(rng) < 0.05f) prev_surface.mesh.data[i] = kInvalidId;
   }
   const TemporalHistory prev = random_history(rng, prev_surface);
-  const RgbPlane noisy = random_rgb(rng, w, h, 10.0f);
+  const RgbPlane noisy = random_plane(rng, w, h, 0.0f, 10.0f);
 
   // Every path of temporal_pixel is taken somewhere: bilinear, the 3x3 fallback, disocclusion (the golden
   // probe says which ran).

@@ -112,12 +112,7 @@ void check_within_bound(const FloatPlane& gpu, const FloatPlane& golden, const T
 // around one direction (so w_n = cos^128 spans (0, 1]), a few meshes, and about 10% of pixels on no surface.
 SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  SurfacePlanes s;
-  s.depth = FloatPlane(w, h);
-  s.depth_grad = Vec2Plane(w, h);
-  s.normal = RgbPlane(w, h);
-  s.mesh = UIntPlane(w, h);
-  s.motion = Vec2Plane(w, h);
+  SurfacePlanes s = blank_surface(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const bool none = u(rng) < 0.1f;

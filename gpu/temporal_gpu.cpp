@@ -41,13 +41,16 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   if (out.moment1.data.empty()) return out;
 
-  const auto texels = [&](int pw_, int ph_, TexelFormat f) { return plane_buffer(context, pw_, ph_, f); };
   const int hw = has_history ? pw : 0, hh = has_history ? ph : 0;
-  const auto noisy_buffer = texels(w, h, TexelFormat::RGBA32F), surface = texels(w, h, TexelFormat::RGBA32F),
-             grad = texels(w, h, TexelFormat::RG32F), mesh = texels(w, h, TexelFormat::R32UI),
-             motion = texels(w, h, TexelFormat::RG32F), prev_color = texels(hw, hh, TexelFormat::RGBA32F),
-             prev_moments = texels(hw, hh, TexelFormat::RGBA32F), prev_surface = texels(hw, hh, TexelFormat::RGBA32F),
-             prev_mesh = texels(hw, hh, TexelFormat::R32UI);
+  const auto noisy_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             grad = plane_buffer(context, w, h, TexelFormat::RG32F),
+             mesh = plane_buffer(context, w, h, TexelFormat::R32UI),
+             motion = plane_buffer(context, w, h, TexelFormat::RG32F),
+             prev_color = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
+             prev_moments = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
+             prev_surface = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
+             prev_mesh = plane_buffer(context, hw, hh, TexelFormat::R32UI);
   pack_rgbw(noisy, nullptr, *noisy_buffer);
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
@@ -60,7 +63,7 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
     pack_ids(prev.surface.mesh, *prev_mesh);
   }
   std::unique_ptr<GpuBuffer> outputs[4];
-  for (auto& o : outputs) o = texels(w, h, TexelFormat::RGBA32F);
+  for (auto& o : outputs) o = plane_buffer(context, w, h, TexelFormat::RGBA32F);
 
   const TemporalPush push{uint32_t(w),
                           uint32_t(h),

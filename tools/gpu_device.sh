@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
+# no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
+# take .gl/ and .deps/ along. Usage, from the repository root:
+#   bash tools/gpu_device.sh [info] [test] [bench]      (default: all three)
+#     info   the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
+#     test   a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
+#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080
+# Logs and bench.csv go to $OUT (default out/device).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+OUT=${OUT:-out/device}
+mkdir -p "$OUT"
+steps=("$@")
+((${#steps[@]})) || steps=(info test bench)
+wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
+
+# The loaders go into / (they are what a GPU machine's driver expects to find); everything else into a prefix.
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+DEPS=/tmp/deps
+rm -rf "$DEPS"
+# libvulkan1 also into the prefix: libvulkan-dev's libvulkan.so links to it there.
+for f in .deps/*.deb .gl/libvulkan1_*.deb; do dpkg -x "$f" "$DEPS"; done
+export PATH="$DEPS/usr/bin:$PATH"
+export LD_LIBRARY_PATH="$DEPS/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export VK_LAYER_PATH="$DEPS/usr/share/vulkan/explicit_layer.d"
+# The NVIDIA driver's manifest, where the image keeps it outside the loader's search path.
+icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -f "$icd" ] && ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
+  export VK_DRIVER_FILES="$icd" VK_ICD_FILENAMES="$icd"
+fi
+
+if wants info; then
+  nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv 2>&1 |
+    tee "$OUT/info.txt"
+  python3 - <<'EOF' 2>&1 | tee -a "$OUT/info.txt"
+# A device-to-device copy of 1 GiB: the memory bandwidth the passes' bytes are set against.
+try:
+    import torch
+except ImportError:
+    raise SystemExit("no PyTorch: copy bandwidth not measured")
+a = torch.empty(1 << 28, dtype=torch.float32, device="cuda").normal_()
+b = torch.empty_like(a)
+for _ in range(3):
+    b.copy_(a)
+start, stop = torch.cuda.Event(enable_timing=True), torch.cuda.Event(enable_timing=True)
+times = []
+for _ in range(20):
+    start.record(); b.copy_(a); stop.record(); stop.synchronize()
+    times.append(start.elapsed_time(stop))
+ms = sorted(times)[len(times) // 2]
+print(f"device-to-device copy of 1 GiB: {ms:.3f} ms median, {2 * a.numel() * 4 / (ms * 1e-3) / 1e9:.0f} GB/s read + written")
+EOF
+fi
+
+BUILD=build-gpu
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$DEPS/usr" \
+  -DRTDR_VULKAN_TESTS_ONLY=ON >"$OUT/build.log" 2>&1 &&
+  cmake --build "$BUILD" -j "$(nproc)" >>"$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
+echo "built: $BUILD"
+
+status=0
+if wants test; then
+  ctest --test-dir "$BUILD" -L vulkan --output-on-failure -j 4 >"$OUT/ctest.log" 2>&1 || status=1
+  grep -E "tests passed|tests failed|Failed|\*\*\*" "$OUT/ctest.log" | head -30
+fi
+
+if wants bench; then
+  for size in 1280x720 1920x1080; do
+    "$BUILD/app/rtdr" bench --backend cpu,vulkan --scenes pillars --size "$size" --runs 20 --warmup 5 \
+      --csv "$OUT/bench_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+  done
+fi
+exit $status

@@ -53,7 +53,8 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     std::string devices;
     for (const std::string& backend : backends) {
       const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
-      if (m.context) devices += ", vulkan device " + m.context->device_name();
+      if (m.context)
+        devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ")";
       medians[backend] = time_passes(*m.method, frames, warmup);
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
@@ -74,7 +75,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
           std::printf(" %10s", "-");
           continue;
         }
-        std::printf(" %10.1f", it->second);
+        std::printf(" %10.3f", it->second);
         if (csv)
           *csv << "filter:" << o.method << ':' << backend << ',' << name << ',' << size.width << ',' << size.height
                << ',' << thread_count() << ",ms_" << pass << ',' << it->second << '\n';

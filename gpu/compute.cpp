@@ -22,15 +22,24 @@ VkFormat vk_format(TexelFormat format) {
   return VK_FORMAT_UNDEFINED;
 }
 
-// Device-local memory the host can map where the device has it (lavapipe: all of it; GPUs with a resizable BAR),
-// else plain host memory the device reads over the bus.
-uint32_t mappable_memory_type(const VulkanContext& context, uint32_t type_bits) {
+// The memory types a buffer of kind `memory` may live in, best first (compute.h's Memory). Always host-visible
+// and host-coherent. Device: device-local where the host can map it, then host memory, which also serves a GPU
+// whose mappable device-local heap (256 MiB without a resizable BAR) is full. Readback: host-cached first.
+std::vector<uint32_t> mappable_memory_types(const VulkanContext& context, uint32_t type_bits, Memory memory) {
   const VkMemoryPropertyFlags mapped = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  try {
-    return context.memory_type(type_bits, mapped | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  } catch (const Error&) {
-    return context.memory_type(type_bits, mapped);
+  const VkMemoryPropertyFlags preferred =
+      memory == Memory::Device ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  std::vector<uint32_t> types;
+  for (const VkMemoryPropertyFlags wanted : {mapped | preferred, mapped}) {
+    try {
+      const uint32_t type = context.memory_type(type_bits, wanted);
+      if (std::find(types.begin(), types.end(), type) == types.end()) types.push_back(type);
+    } catch (const Error&) {
+      // no such type on this device: the next kind
+    }
   }
+  if (types.empty()) throw Error("Vulkan: no host-visible, host-coherent memory on " + context.device_name());
+  return types;
 }
 
 }  // namespace
@@ -39,7 +48,7 @@ size_t texel_floats(TexelFormat format) {
   return format == TexelFormat::RGBA32F ? 4 : format == TexelFormat::RG32F ? 2 : 1;
 }
 
-GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format)
+GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format, Memory memory)
     : device_(context.device()), floats_(floats) {
   if (floats == 0) throw Error("GpuBuffer: a buffer needs at least one float");
   if (floats % texel_floats(format) != 0)
@@ -48,16 +57,23 @@ GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format)
   try {
     VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = floats * sizeof(float);
-    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     vk_check(vkCreateBuffer(device_, &info, nullptr, &buffer_), "vkCreateBuffer");
     VkMemoryRequirements needs;
     vkGetBufferMemoryRequirements(device_, buffer_, &needs);
     VkMemoryAllocateInfo allocate{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     allocate.allocationSize = needs.size;
-    // Host-coherent: no flush after upload() nor invalidate before download().
-    allocate.memoryTypeIndex = mappable_memory_type(context, needs.memoryTypeBits);
-    vk_check(vkAllocateMemory(device_, &allocate, nullptr, &memory_), "vkAllocateMemory");
+    // Host-coherent: no flush after upload() nor invalidate before download(). A full heap moves on to the next
+    // type; the last type's failure is the error.
+    const std::vector<uint32_t> types = mappable_memory_types(context, needs.memoryTypeBits, memory);
+    VkResult allocated = VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    for (size_t t = 0; t < types.size() && allocated != VK_SUCCESS; ++t) {
+      allocate.memoryTypeIndex = types[t];
+      allocated = vkAllocateMemory(device_, &allocate, nullptr, &memory_);
+    }
+    vk_check(allocated, "vkAllocateMemory");
     vk_check(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
     void* mapped = nullptr;
     vk_check(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
@@ -192,16 +208,16 @@ constexpr uint32_t kMaxBindingsPerKind = 32;
 
 }  // namespace
 
-ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_dispatches)
-    : context_(context), max_dispatches_(max_dispatches) {
+ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_commands)
+    : context_(context), max_commands_(max_commands) {
   VkDevice device = context.device();
   try {
     // One descriptor set per dispatch, all freed at once when the next batch begins.
     const VkDescriptorPoolSize sizes[2] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kMaxBindingsPerKind * max_dispatches},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxBindingsPerKind * max_dispatches}};
+        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kMaxBindingsPerKind * max_commands},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxBindingsPerKind * max_commands}};
     VkDescriptorPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool_info.maxSets = max_dispatches;
+    pool_info.maxSets = max_commands;
     pool_info.poolSizeCount = 2;
     pool_info.pPoolSizes = sizes;
     vk_check(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
@@ -209,7 +225,7 @@ ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_dispatches)
       // Two timestamps per dispatch: before and after it.
       VkQueryPoolCreateInfo query_info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
       query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      query_info.queryCount = 2 * max_dispatches;
+      query_info.queryCount = 2 * max_commands;
       vk_check(vkCreateQueryPool(device, &query_info, nullptr, &query_pool_), "vkCreateQueryPool");
     }
     VkCommandBufferAllocateInfo command_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -247,7 +263,7 @@ void ComputeBatch::begin() {
   VkCommandBufferBeginInfo begin_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin_info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vk_check(vkBeginCommandBuffer(commands_, &begin_info), "vkBeginCommandBuffer");
-  if (query_pool_) vkCmdResetQueryPool(commands_, query_pool_, 0, 2 * max_dispatches_);
+  if (query_pool_) vkCmdResetQueryPool(commands_, query_pool_, 0, 2 * max_commands_);
   labels_.clear();
 }
 
@@ -257,9 +273,7 @@ void ComputeBatch::dispatch(const ComputePipeline& pipeline, const std::vector<c
   if (buffers.size() != kinds.size())
     throw Error("ComputeBatch::dispatch (" + label + "): " + std::to_string(buffers.size()) + " buffers for " +
                 std::to_string(kinds.size()) + " bindings");
-  if (labels_.size() == max_dispatches_)
-    throw Error("ComputeBatch::dispatch (" + label + "): more than " + std::to_string(max_dispatches_) +
-                " dispatches in one batch");
+  open_command(label, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   VkDevice device = context_.device();
 
   // One descriptor set: buffers[i] at binding i, as a texel-buffer view or as a whole storage buffer.
@@ -292,34 +306,57 @@ void ComputeBatch::dispatch(const ComputePipeline& pipeline, const std::vector<c
   }
   vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 
-  // Each dispatch reads what the dispatches before it wrote.
-  if (!labels_.empty()) {
-    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-                         &barrier, 0, nullptr, 0, nullptr);
-  }
-  const uint32_t query = 2 * uint32_t(labels_.size());
   vkCmdBindPipeline(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
   vkCmdBindDescriptorSets(commands_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
   if (pipeline.push_bytes() > 0)
     vkCmdPushConstants(commands_, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pipeline.push_bytes(), push);
-  // The dispatch between two timestamps: the first once earlier work is done, the second when it is.
-  if (query_pool_) vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, query_pool_, query);
   vkCmdDispatch(commands_, groups_x, groups_y, 1);
-  if (query_pool_) vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, query_pool_, query + 1);
+  close_command(label);
+}
+
+void ComputeBatch::copy(const GpuBuffer& from, GpuBuffer& to, const std::string& label) {
+  if (from.floats() != to.floats())
+    throw Error("ComputeBatch::copy (" + label + "): " + std::to_string(from.floats()) + " floats into a buffer of " +
+                std::to_string(to.floats()));
+  open_command(label, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+  const VkBufferCopy region{0, 0, from.floats() * sizeof(float)};
+  vkCmdCopyBuffer(commands_, from.handle(), to.handle(), 1, &region);
+  close_command(label);
+}
+
+void ComputeBatch::open_command(const std::string& label, VkPipelineStageFlags stage, VkAccessFlags access) {
+  if (labels_.size() == max_commands_)
+    throw Error("ComputeBatch (" + label + "): more than " + std::to_string(max_commands_) + " commands in one batch");
+  // Each command reads what the commands before it wrote.
+  if (!labels_.empty()) {
+    VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = access;
+    vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, stage, 0,
+                         1, &barrier, 0, nullptr, 0, nullptr);
+  }
+  // The start timestamp is latched once every command before has finished (bottom of pipe), so that the
+  // commands' times do not overlap and add up to the batch's time; a top-of-pipe stamp would be latched at
+  // once on a GPU, while the command before still runs.
+  if (query_pool_)
+    vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, query_pool_, 2 * uint32_t(labels_.size()));
+}
+
+void ComputeBatch::close_command(const std::string& label) {
+  if (query_pool_)
+    vkCmdWriteTimestamp(commands_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, query_pool_,
+                        2 * uint32_t(labels_.size()) + 1);
   labels_.push_back(label);
 }
 
 void ComputeBatch::run() {
   VkDevice device = context_.device();
-  // Make the shaders' writes visible to the host's reads (the buffers are host-coherent).
+  // Make the shaders' and copies' writes visible to the host's reads (the buffers are host-coherent).
   VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                       nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(commands_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
   vk_check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
   VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;

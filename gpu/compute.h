@@ -33,11 +33,19 @@ enum class TexelFormat { None, R32F, RG32F, RGBA32F, R32UI };
 // 32-bit components per texel: 1, 2 or 4 (1 for None).
 size_t texel_floats(TexelFormat format);
 
+// Where a buffer's memory lives. Both kinds are mapped and host-coherent.
+//   Device:   what the shaders read and write: device-local memory the host can map where the device has it
+//             (lavapipe: all of it; a GPU with a resizable BAR), else host memory. The host writes it well
+//             (write-combined, in order) but reads it slowly on a GPU: uncached, across the bus.
+//   Readback: host-cached memory for results the host reads: ComputeBatch::copy fills it from a Device buffer.
+enum class Memory { Device, Readback };
+
 class GpuBuffer {
  public:
   // Room for `floats` floats (at least 1); with a format, a view of the whole buffer in that format (`floats`
   // must then be a multiple of the texel's size).
-  GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format = TexelFormat::None);
+  GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format = TexelFormat::None,
+            Memory memory = Memory::Device);
   ~GpuBuffer();
   GpuBuffer(const GpuBuffer&) = delete;
   GpuBuffer& operator=(const GpuBuffer&) = delete;
@@ -108,8 +116,8 @@ inline uint32_t group_count(uint32_t pixels, uint32_t group) { return (pixels + 
 
 class ComputeBatch {
  public:
-  // Room for up to `max_dispatches` dispatches per run().
-  ComputeBatch(VulkanContext& context, uint32_t max_dispatches);
+  // Room for up to `max_commands` dispatches and copies per run().
+  ComputeBatch(VulkanContext& context, uint32_t max_commands);
   ~ComputeBatch();
   ComputeBatch(const ComputeBatch&) = delete;
   ComputeBatch& operator=(const ComputeBatch&) = delete;
@@ -118,6 +126,9 @@ class ComputeBatch {
   // names its time in times(). The buffers must outlive run().
   void dispatch(const ComputePipeline& pipeline, const std::vector<const GpuBuffer*>& buffers, const void* push,
                 uint32_t groups_x, uint32_t groups_y, const std::string& label);
+  // Records a copy of all of `from` into `to` (the same size), after every dispatch recorded before it: how
+  // results reach a Memory::Readback buffer. Timed like a dispatch, under `label`.
+  void copy(const GpuBuffer& from, GpuBuffer& to, const std::string& label);
   // Submits what was recorded, waits, and makes the writes visible to the host; then starts a new batch.
   void run();
   // Each dispatch of the last run(): its label and device time in milliseconds (empty without timestamps).
@@ -129,9 +140,13 @@ class ComputeBatch {
  private:
   void begin();
   void release();
+  // Checks there is room for one more command and orders it after the ones before (`stage`, `access`: what it
+  // does); then writes its start timestamp.
+  void open_command(const std::string& label, VkPipelineStageFlags stage, VkAccessFlags access);
+  void close_command(const std::string& label);  // its end timestamp
 
   VulkanContext& context_;
-  uint32_t max_dispatches_;
+  uint32_t max_commands_;
   VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
   VkQueryPool query_pool_ = VK_NULL_HANDLE;
   VkCommandBuffer commands_ = VK_NULL_HANDLE;

@@ -13,8 +13,9 @@ namespace {
 
 using PlanePtr = std::unique_ptr<GpuBuffer>;
 
-// Dispatches per frame: temporal, variance, the levels, modulate, tonemap, TAA.
-uint32_t dispatches_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_levels); }
+// Commands per frame: the dispatches (temporal, variance, the levels, modulate, tonemap, TAA) and the two copies
+// of the results into readback memory.
+uint32_t commands_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_levels) + 2; }
 
 }  // namespace
 
@@ -28,6 +29,8 @@ struct SvgfVulkan::Buffers {
   PlanePtr surface[2], mesh[2], moments[2][2], history[2][2], display[2];
   // This frame's intermediates.
   PlanePtr temporal[2], variance[2], level[2][2], colour, tonemapped, prefiltered;
+  // The results, copied where the host reads them fast (compute.h's Memory::Readback).
+  PlanePtr colour_readback, display_readback;
 
   Buffers(VulkanContext& context, int w, int h) : width(w), height(h) {
     const auto rgba = [&] { return plane_buffer(context, w, h, TexelFormat::RGBA32F); };
@@ -47,6 +50,8 @@ struct SvgfVulkan::Buffers {
     depth_grad = plane_buffer(context, w, h, TexelFormat::RG32F);
     motion = plane_buffer(context, w, h, TexelFormat::RG32F);
     prefiltered = plane_buffer(context, w, h, TexelFormat::RG32F);
+    colour_readback = std::make_unique<GpuBuffer>(context, colour->floats(), TexelFormat::None, Memory::Readback);
+    display_readback = std::make_unique<GpuBuffer>(context, colour->floats(), TexelFormat::None, Memory::Readback);
   }
   static Streams streams(const PlanePtr (&planes)[2]) { return {planes[0].get(), planes[1].get()}; }
 };
@@ -55,7 +60,7 @@ SvgfVulkan::SvgfVulkan(VulkanContext& context, const SvgfOptions& options)
     : context_(context),
       options_(options),
       shaders_(context),
-      batch_(context, dispatches_per_frame(options.svgf)) {
+      batch_(context, commands_per_frame(options.svgf)) {
   validate(options_.svgf);
   validate(options_.tonemap);
   validate(options_.taa_params);
@@ -129,6 +134,9 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                        .jitter_previous = {0.0f, 0.0f},
                        .has_history = has_history ? 1u : 0u,
                        .padding = 0});
+  // The results into readback memory: on a GPU the host reads device memory across the bus, uncached.
+  batch_.copy(*b.colour, *b.colour_readback, "transfer");
+  batch_.copy(*b.display[cur], *b.display_readback, "transfer");
   batch_.run();
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
@@ -137,10 +145,11 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   const auto t2 = std::chrono::steady_clock::now();
   Frame out(w, h);
   out.source = in.source;
-  set_rgb_plane(out, "color", unpack_rgb(*b.colour, w, h));
-  set_rgb_plane(out, "display", unpack_rgb(*b.display[cur], w, h));
+  set_rgb_plane(out, "color", unpack_rgb(*b.colour_readback, w, h));
+  set_rgb_plane(out, "display", unpack_rgb(*b.display_readback, w, h));
   const auto t3 = std::chrono::steady_clock::now();
-  times_["transfer"] = std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
+  // "transfer": the copies' device time and the host's packing and unpacking.
+  times_["transfer"] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
   return out;
 }
 

@@ -4,12 +4,13 @@
 // TAA - each one dispatch of the ports in filters/svgf/*.comp and filters/taa/taa.comp, both streams at once.
 //
 // Every history stays on the device between frames (colour history, moments, the previous G-buffer, the TAA
-// history): per frame the host uploads the input frame's planes, runs one batch of 5 + atrous_levels dispatches,
-// and reads back the colour and the display colour. Buffers are made for the first frame's size; a later frame
+// history): per frame the host uploads the input frame's planes, runs one batch of 5 + atrous_levels dispatches
+// and two copies, and reads back the colour and the display colour. Buffers are made for the first frame's size; a later frame
 // of another size throws, as SvgfFilter does.
 //
 // pass_times(): each pass's device time (timestamps), summed over its dispatches and streams, plus "transfer": the
-// host's wall time to pack the inputs and unpack the outputs. Intermediate buffers are not dumped and passes are
+// host's wall time to pack the inputs and unpack the outputs, and the device time of copying the outputs into
+// host-cached memory first. Intermediate buffers are not dumped and passes are
 // not probed: those stay with the golden SvgfFilter (--backend cpu).
 #pragma once
 

@@ -3,6 +3,8 @@
 
 #include "core/error.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -108,6 +110,18 @@ VkPhysicalDevice choose_device(VkInstance instance) {
   return nvidia ? nvidia : first;
 }
 
+// VulkanOptions::inputs resolved for a device of `type`.
+ShaderInputs resolve_inputs(ShaderInputs wanted, VkPhysicalDeviceType type) {
+  if (wanted != ShaderInputs::Auto) return wanted;
+  const char* env = std::getenv("RTDR_VK_INPUTS");
+  if (env && *env) {
+    if (std::strcmp(env, "texel") == 0) return ShaderInputs::Texel;
+    if (std::strcmp(env, "storage") == 0) return ShaderInputs::Storage;
+    throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
+  }
+  return type == VK_PHYSICAL_DEVICE_TYPE_CPU ? ShaderInputs::Texel : ShaderInputs::Storage;
+}
+
 }  // namespace
 
 void vk_check(VkResult result, const char* what) {
@@ -146,6 +160,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(physical_device_, &properties);
     device_name_ = properties.deviceName;
+    inputs_ = resolve_inputs(options.inputs, properties.deviceType);
     timestamp_period_ns_ = properties.limits.timestampPeriod;
     const uint32_t family = uint32_t(compute_queue_family(physical_device_, &timestamp_valid_bits_));
 
@@ -195,5 +210,18 @@ uint32_t VulkanContext::memory_type(uint32_t type_bits, VkMemoryPropertyFlags pr
   throw Error("Vulkan: no memory type with the requested properties on " + device_name_);
 }
 
-}  // namespace rtdr
+std::string VulkanContext::memory_summary() const {
+  VkPhysicalDeviceMemoryProperties memory;
+  vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory);
+  const VkMemoryPropertyFlags wanted = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+  VkDeviceSize largest = 0;
+  for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+    if ((memory.memoryTypes[i].propertyFlags & wanted) == wanted)
+      largest = std::max(largest, memory.memoryHeaps[memory.memoryTypes[i].heapIndex].size);
+  if (largest == 0) return "no mappable device-local memory";
+  char text[64];
+  std::snprintf(text, sizeof text, "mappable device-local heap %.1f GiB", double(largest) / (1u << 30));
+  return text;
+}
 
+}  // namespace rtdr

@@ -1,7 +1,8 @@
 // The Vulkan device every port runs on: instance, physical device, one compute queue, one command pool.
 //
 // Device choice: the device whose name contains $RTDR_VK_DEVICE when that is set; else the first NVIDIA GPU;
-// else the first device (on a machine with no GPU: lavapipe, "llvmpipe", mesa-vulkan-drivers).
+// else the first device (on a machine with no GPU: lavapipe, "llvmpipe", mesa-vulkan-drivers). The shaders'
+// input kind: VulkanOptions::inputs.
 // With `validation`, the instance loads VK_LAYER_KHRONOS_validation and a VK_EXT_debug_utils messenger that
 // counts the warnings and errors it reports and keeps their text, so tests can assert there were none.
 // Failures throw rtdr::Error; available() says beforehand whether a context can be made at all.
@@ -16,8 +17,14 @@
 
 namespace rtdr {
 
+// How the ports read their input planes (core/shader_shared.h's RTDR_INPUT_*): as texel buffers, which lavapipe
+// reads fastest, or as storage buffers, which a GPU reads fastest (docs/performance.md).
+enum class ShaderInputs { Auto, Texel, Storage };
+
 struct VulkanOptions {
   bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages
+  // Auto: $RTDR_VK_INPUTS (texel or storage) when set; else texel on a CPU device (lavapipe), storage on a GPU.
+  ShaderInputs inputs = ShaderInputs::Auto;
 };
 
 // What the validation layer said: warnings and errors only (info and verbose are not kept).
@@ -42,6 +49,7 @@ class VulkanContext {
   VkQueue queue() const { return queue_; }
   VkCommandPool command_pool() const { return command_pool_; }
   const std::string& device_name() const { return device_name_; }
+  ShaderInputs shader_inputs() const { return inputs_; }  // Texel or Storage, never Auto
 
   // Timestamp queries: supported when the compute queue has valid bits; a tick lasts timestamp_period_ns.
   bool has_timestamps() const { return timestamp_valid_bits_ > 0; }
@@ -52,6 +60,10 @@ class VulkanContext {
 
   // A memory type index among `type_bits` with all of `properties`; throws rtdr::Error when there is none.
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags properties) const;
+
+  // Where mapped buffers live, for benchmark reports: the size of the largest device-local heap the host can
+  // map, e.g. "mappable device-local heap 80.0 GiB", or "no mappable device-local memory".
+  std::string memory_summary() const;
 
  private:
   void release();  // destroys whatever was created, in reverse order; the destructor and a failed constructor
@@ -64,6 +76,7 @@ class VulkanContext {
   VkQueue queue_ = VK_NULL_HANDLE;
   VkCommandPool command_pool_ = VK_NULL_HANDLE;
   std::string device_name_;
+  ShaderInputs inputs_ = ShaderInputs::Texel;
   uint32_t timestamp_valid_bits_ = 0;
   float timestamp_period_ns_ = 0.0f;
 };

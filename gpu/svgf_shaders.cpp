@@ -1,17 +1,25 @@
 // The SVGF ports' pipelines and their dispatches. See svgf_shaders.h.
 #include "gpu/svgf_shaders.h"
 
+#include <string>
 #include <vector>
 
 namespace rtdr {
 
 namespace {
 
-// `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port.
-std::vector<Binding> bindings(uint32_t texel, uint32_t storage) {
+// `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
+// storage inputs, all of them storage buffers.
+std::vector<Binding> bindings(ShaderInputs inputs, uint32_t texel, uint32_t storage) {
+  if (inputs == ShaderInputs::Storage) return std::vector<Binding>(texel + storage, Binding::Storage);
   std::vector<Binding> kinds(texel, Binding::Texel);
   kinds.insert(kinds.end(), storage, Binding::Storage);
   return kinds;
+}
+
+// The SPIR-V of `stem` built for the context's input kind (gpu/CMakeLists.txt).
+std::vector<uint32_t> load_port(const VulkanContext& context, const std::string& stem) {
+  return load_shader(context.shader_inputs() == ShaderInputs::Storage ? stem + "_storage" : stem);
 }
 
 uint32_t groups_x(uint32_t width) { return group_count(width, kSvgfGroupSizeX); }
@@ -20,13 +28,16 @@ uint32_t groups_y(uint32_t height) { return group_count(height, kSvgfGroupSizeY)
 }  // namespace
 
 SvgfShaders::SvgfShaders(VulkanContext& context)
-    : temporal_(context, load_shader("temporal"), bindings(kTemporalTexelBindings, kTemporalStorageBindings),
+    : temporal_(context, load_port(context, "temporal"),
+                bindings(context.shader_inputs(), kTemporalTexelBindings, kTemporalStorageBindings),
                 sizeof(TemporalPush)),
-      variance_(context, load_shader("variance"), bindings(6, 2), sizeof(VariancePush)),
-      atrous_(context, load_shader("atrous"), bindings(4, 3), sizeof(AtrousPush)),
-      modulate_(context, load_shader("modulate"), bindings(4, 1), sizeof(ModulatePush)),
-      tonemap_(context, load_shader("tonemap"), bindings(1, 1), sizeof(TonemapPush)),
-      taa_(context, load_shader("taa"), bindings(3, 1), sizeof(TaaPush)) {}
+      variance_(context, load_port(context, "variance"), bindings(context.shader_inputs(), 6, 2),
+                sizeof(VariancePush)),
+      atrous_(context, load_port(context, "atrous"), bindings(context.shader_inputs(), 4, 3), sizeof(AtrousPush)),
+      modulate_(context, load_port(context, "modulate"), bindings(context.shader_inputs(), 4, 1),
+                sizeof(ModulatePush)),
+      tonemap_(context, load_port(context, "tonemap"), bindings(context.shader_inputs(), 1, 1), sizeof(TonemapPush)),
+      taa_(context, load_port(context, "taa"), bindings(context.shader_inputs(), 3, 1), sizeof(TaaPush)) {}
 
 void SvgfShaders::temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
                            Streams illumination_out, Streams moments_out, const TemporalPush& push) const {

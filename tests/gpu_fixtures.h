@@ -21,14 +21,18 @@
 namespace rtdr::gpu_test {
 
 // The device for these tests, with the validation layer; null (after a WARN saying why) when there is none:
-// the calling test then returns, skipped rather than failed.
+// the calling test then returns, skipped rather than failed. Every test calling it runs twice (GENERATE): with
+// the ports built for texel-buffer inputs and with those built for storage-buffer inputs (core/shader_shared.h),
+// so both builds of every shader are validated on whatever device there is.
 inline std::unique_ptr<VulkanContext> validated_context() {
+  const ShaderInputs inputs = GENERATE(ShaderInputs::Texel, ShaderInputs::Storage);
   std::string reason;
   if (!VulkanContext::available(&reason)) {
     WARN("SKIPPED: no Vulkan device: " << reason);
     return nullptr;
   }
-  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true});
+  UNSCOPED_INFO("shader inputs: " << (inputs == ShaderInputs::Texel ? "texel buffers" : "storage buffers"));
+  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true, .inputs = inputs});
 }
 
 // Any validation-layer warning or error fails the test (issue 6: "any validation message fails the test").

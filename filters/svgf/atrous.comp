@@ -20,10 +20,10 @@
 
 layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
-layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
-layout(set = 0, binding = 2) uniform samplerBuffer surface;
-layout(set = 0, binding = 3) uniform samplerBuffer depth_grad;
+RTDR_INPUT_RGBA(0, direct_in)
+RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_RGBA(2, surface)
+RTDR_INPUT_RG(3, depth_grad)
 layout(std430, set = 0, binding = 4) writeonly buffer DirectOut { vec4 direct_out[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer IndirectOut { vec4 indirect_out[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
@@ -38,7 +38,7 @@ bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(p.width) && y < i
 struct Illumination {
   vec4 stream[2];  // (c.r, c.g, c.b, Var(c)) per stream
 };
-Illumination illumination_at(int i) { return Illumination(vec4[2](texelFetch(direct_in, i), texelFetch(indirect_in, i))); }
+Illumination illumination_at(int i) { return Illumination(vec4[2](direct_in(i), indirect_in(i))); }
 
 // core/color.h's luminance, in its order of operations.
 float luminance(vec3 rgb) {
@@ -111,7 +111,7 @@ Centre read_centre(int x, int y, vec4 s, Illumination c) {
   const vec2 l = vec2(luminance(c.stream[0].rgb), luminance(c.stream[1].rgb));
   const vec2 l_scale = vec2(luminance_scale(var_g3x3[0], p.sigma_l, p.epsilon),
                             luminance_scale(var_g3x3[1], p.sigma_l, p.epsilon));
-  return Centre(x, y, s.w, texelFetch(depth_grad, index_of(x, y)).xy, s.xyz, l, var_g3x3, l_scale);
+  return Centre(x, y, s.w, depth_grad(index_of(x, y)).xy, s.xyz, l, var_g3x3, l_scale);
 }
 
 // w(p, q) = w_z w_n w_l [SVGF17 Eq. 2] of both streams for a tap q != p with surface record s_q and
@@ -148,7 +148,7 @@ void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= int(p.width) || y >= int(p.height)) return;
   const int i = index_of(x, y);
-  const vec4 s_p = texelFetch(surface, i);
+  const vec4 s_p = surface(i);
   const Illumination c_p = illumination_at(i);
   if (p.keep_prefiltered != 0u) prefiltered_out[i] = prefilter_variance_pixel(x, y);
 
@@ -175,7 +175,7 @@ void main() {
       // Off the image: skipped; sum h w renormalises over the taps that remain.
       if (!inside(qx, qy)) continue;
       const int q = index_of(qx, qy);
-      const vec4 s_q = texelFetch(surface, q);
+      const vec4 s_q = surface(q);
       // No surface at q: nothing to filter there.
       if (!has_surface(s_q)) continue;
       const Illumination c_q = illumination_at(q);

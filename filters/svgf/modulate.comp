@@ -9,10 +9,10 @@
 
 layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
-layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
-layout(set = 0, binding = 2) uniform samplerBuffer albedo_in;
-layout(set = 0, binding = 3) uniform samplerBuffer emission_in;
+RTDR_INPUT_RGBA(0, direct_in)
+RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_RGBA(2, albedo_in)
+RTDR_INPUT_RGBA(3, emission_in)
 layout(std430, set = 0, binding = 4) writeonly buffer Colour { vec4 colour_out[]; };
 
 layout(push_constant) uniform Push { ModulatePush frame; };
@@ -36,7 +36,7 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
   const int i = int(pixel.y * frame.width + pixel.x);
-  const vec3 colour = remodulate_pixel(texelFetch(direct_in, i).rgb, texelFetch(indirect_in, i).rgb,
-                                       texelFetch(albedo_in, i).rgb, texelFetch(emission_in, i).rgb);
+  const vec3 colour = remodulate_pixel(direct_in(i).rgb, indirect_in(i).rgb,
+                                       albedo_in(i).rgb, emission_in(i).rgb);
   colour_out[i] = vec4(colour, 0.0);
 }

@@ -14,18 +14,18 @@
 
 layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer noisy_direct;
-layout(set = 0, binding = 1) uniform samplerBuffer noisy_indirect;
-layout(set = 0, binding = 2) uniform samplerBuffer cur_surface;
-layout(set = 0, binding = 3) uniform samplerBuffer cur_depth_grad;
-layout(set = 0, binding = 4) uniform usamplerBuffer cur_mesh;
-layout(set = 0, binding = 5) uniform samplerBuffer cur_motion;
-layout(set = 0, binding = 6) uniform samplerBuffer prev_direct;
-layout(set = 0, binding = 7) uniform samplerBuffer prev_indirect;
-layout(set = 0, binding = 8) uniform samplerBuffer prev_moments_direct;
-layout(set = 0, binding = 9) uniform samplerBuffer prev_moments_indirect;
-layout(set = 0, binding = 10) uniform samplerBuffer prev_surface;
-layout(set = 0, binding = 11) uniform usamplerBuffer prev_mesh;
+RTDR_INPUT_RGBA(0, noisy_direct)
+RTDR_INPUT_RGBA(1, noisy_indirect)
+RTDR_INPUT_RGBA(2, cur_surface)
+RTDR_INPUT_RG(3, cur_depth_grad)
+RTDR_INPUT_UINT(4, cur_mesh)
+RTDR_INPUT_RG(5, cur_motion)
+RTDR_INPUT_RGBA(6, prev_direct)
+RTDR_INPUT_RGBA(7, prev_indirect)
+RTDR_INPUT_RGBA(8, prev_moments_direct)
+RTDR_INPUT_RGBA(9, prev_moments_indirect)
+RTDR_INPUT_RGBA(10, prev_surface)
+RTDR_INPUT_UINT(11, prev_mesh)
 layout(std430, set = 0, binding = 12) writeonly buffer OutDirect { vec4 out_direct[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer OutIndirect { vec4 out_indirect[]; };
 layout(std430, set = 0, binding = 14) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
@@ -69,8 +69,8 @@ HistorySample add_tap(HistorySample h, vec4 color, vec4 moments, float w) {
 }
 void add_taps(inout Histories h, ivec2 q, float w) {
   const int i = prev_index(q);
-  h.stream[0] = add_tap(h.stream[0], texelFetch(prev_direct, i), texelFetch(prev_moments_direct, i), w);
-  h.stream[1] = add_tap(h.stream[1], texelFetch(prev_indirect, i), texelFetch(prev_moments_indirect, i), w);
+  h.stream[0] = add_tap(h.stream[0], prev_direct(i), prev_moments_direct(i), w);
+  h.stream[1] = add_tap(h.stream[1], prev_indirect(i), prev_moments_indirect(i), w);
 }
 
 HistorySample scaled(HistorySample h, float s) {
@@ -98,9 +98,9 @@ bool temporal_tap_consistent(Centre c, ivec2 q, vec2 p_prev) {
   if (!in_image) return false;
   const int iq = prev_index(q);
   // Mesh ids compare exactly; a tap with no surface (kInvalidId) never matches a covered pixel.
-  const bool same_mesh = texelFetch(prev_mesh, iq).x == c.mesh;
+  const bool same_mesh = prev_mesh(iq).x == c.mesh;
   // Depth: |z - z'| <= temporal_depth_relative max(z, z') + |grad z(p) . (q - p')|  (temporal.h).
-  const vec4 s_prev = texelFetch(prev_surface, iq);
+  const vec4 s_prev = prev_surface(iq);
   const float z_prev = s_prev.w;
   const float dz = abs(c.z - z_prev);
   // GPU only: glm::dot written out ((x x) + (y y)) and `precise`.
@@ -166,7 +166,7 @@ bool backproject_history(int x, int y, Centre c, out Histories result) {
   if (first_frame) return false;
   // p' = pixel centre + motion: where this pixel's surface point was in the previous frame, in pixels
   // [TRMV21 Eq. 1, the motion vector of SVGF17 Sec. 4.1].
-  precise vec2 p_prev = vec2(float(x) + 0.5, float(y) + 0.5) + texelFetch(cur_motion, cur_index(x, y)).xy;
+  precise vec2 p_prev = vec2(float(x) + 0.5, float(y) + 0.5) + cur_motion(cur_index(x, y)).xy;
   // More than a pixel outside the previous image no tap of either filter can be inside (false for a NaN p'
   // too). Testing this first keeps floor(p') within int range.
   const float w = float(frame.prev_width), h = float(frame.prev_height);
@@ -230,8 +230,8 @@ void main() {
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = cur_index(pixel.x, pixel.y);
-  const vec4 s = texelFetch(cur_surface, i);
-  const Centre c = Centre(texelFetch(cur_mesh, i).x, s.w, texelFetch(cur_depth_grad, i).xy, s.xyz);
+  const vec4 s = cur_surface(i);
+  const Centre c = Centre(cur_mesh(i).x, s.w, cur_depth_grad(i).xy, s.xyz);
   // No surface: colour, moments and length 0.
   const TemporalPixel none = TemporalPixel(vec3(0.0), 0.0, 0.0, 0.0);
   if (!has_surface(s)) {
@@ -240,6 +240,6 @@ void main() {
   }
   Histories h;
   const bool found = backproject_history(pixel.x, pixel.y, c, h);
-  write(i, temporal_stream(texelFetch(noisy_direct, i).rgb, found, h.stream[0]),
-        temporal_stream(texelFetch(noisy_indirect, i).rgb, found, h.stream[1]));
+  write(i, temporal_stream(noisy_direct(i).rgb, found, h.stream[0]),
+        temporal_stream(noisy_indirect(i).rgb, found, h.stream[1]));
 }

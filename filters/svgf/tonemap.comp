@@ -9,7 +9,7 @@
 
 layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer colour_in;
+RTDR_INPUT_RGBA(0, colour_in)
 layout(std430, set = 0, binding = 1) writeonly buffer Display { vec4 display_out[]; };
 
 layout(push_constant) uniform Push { TonemapPush frame; };
@@ -44,5 +44,5 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
   const int i = int(pixel.y * frame.width + pixel.x);
-  display_out[i] = vec4(tonemap_pixel(texelFetch(colour_in, i).rgb, frame.exposure), 0.0);
+  display_out[i] = vec4(tonemap_pixel(colour_in(i).rgb, frame.exposure), 0.0);
 }

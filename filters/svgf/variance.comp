@@ -13,12 +13,12 @@
 
 layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer direct_in;
-layout(set = 0, binding = 1) uniform samplerBuffer indirect_in;
-layout(set = 0, binding = 2) uniform samplerBuffer moments_direct;
-layout(set = 0, binding = 3) uniform samplerBuffer moments_indirect;
-layout(set = 0, binding = 4) uniform samplerBuffer surface;
-layout(set = 0, binding = 5) uniform samplerBuffer depth_grad;
+RTDR_INPUT_RGBA(0, direct_in)
+RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_RGBA(2, moments_direct)
+RTDR_INPUT_RGBA(3, moments_indirect)
+RTDR_INPUT_RGBA(4, surface)
+RTDR_INPUT_RG(5, depth_grad)
 layout(std430, set = 0, binding = 6) writeonly buffer DirectOut { vec4 direct_out[]; };
 layout(std430, set = 0, binding = 7) writeonly buffer IndirectOut { vec4 indirect_out[]; };
 
@@ -64,12 +64,12 @@ float variance_from_moments(float mu1, float mu2) {
 }
 
 // The moments of both streams: (mu1' direct, mu2' direct, mu1' indirect, mu2' indirect).
-vec4 moments_at(int i) { return vec4(texelFetch(moments_direct, i).xy, texelFetch(moments_indirect, i).xy); }
+vec4 moments_at(int i) { return vec4(moments_direct(i).xy, moments_indirect(i).xy); }
 
 // sigma'^2 of both streams from the 7x7 bilateral average of their moments.
 vec2 variance_spatial_pixel(int x, int y, vec4 s_p) {
   const float z_p = s_p.w;
-  const vec2 grad_z_p = texelFetch(depth_grad, index_of(x, y)).xy;
+  const vec2 grad_z_p = depth_grad(index_of(x, y)).xy;
   const vec3 n_p = s_p.xyz;
   precise float sum_w = 0.0;
   precise vec4 mu = vec4(0.0);  // sum w mu1', sum w mu2' of the direct stream, then of the indirect
@@ -79,7 +79,7 @@ vec2 variance_spatial_pixel(int x, int y, vec4 s_p) {
       // Taps outside the image or on no surface hold no moments.
       if (!inside(qx, qy)) continue;
       const int q = index_of(qx, qy);
-      const vec4 s_q = texelFetch(surface, q);
+      const vec4 s_q = surface(q);
       if (!has_surface(s_q)) continue;
       // w_z with p - q = (-dx, -dy) [SVGF17 Eq. 3], w_n [SVGF17 Eq. 4]: "weights driven by depths and
       // world-space normals" [SVGF17 Sec. 4.2].
@@ -105,7 +105,7 @@ vec2 variance_spatial_pixel(int x, int y, vec4 s_p) {
 vec2 variance_pixel(int x, int y, vec4 s_p) {
   if (!has_surface(s_p)) return vec2(0.0);  // no surface, no variance
   const int i = index_of(x, y);
-  const vec4 m_direct = texelFetch(moments_direct, i), m_indirect = texelFetch(moments_indirect, i);
+  const vec4 m_direct = moments_direct(i), m_indirect = moments_indirect(i);
   // "Where our temporal history is limited (<4 frames after a disocclusion), we instead estimate the variance
   // spatially" [SVGF17 Sec. 4.2]; 4 is variance_min_history. Each stream has its own history length n.
   const bvec2 temporal = bvec2(m_direct.z >= float(frame.variance_min_history),
@@ -122,7 +122,7 @@ void main() {
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = index_of(pixel.x, pixel.y);
-  const vec2 sigma2 = variance_pixel(pixel.x, pixel.y, texelFetch(surface, i));
-  direct_out[i] = vec4(texelFetch(direct_in, i).rgb, sigma2.x);
-  indirect_out[i] = vec4(texelFetch(indirect_in, i).rgb, sigma2.y);
+  const vec2 sigma2 = variance_pixel(pixel.x, pixel.y, surface(i));
+  direct_out[i] = vec4(direct_in(i).rgb, sigma2.x);
+  indirect_out[i] = vec4(indirect_in(i).rgb, sigma2.y);
 }

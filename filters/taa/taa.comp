@@ -13,17 +13,17 @@
 
 layout(local_size_x = kTaaGroupSizeX, local_size_y = kTaaGroupSizeY) in;
 
-layout(set = 0, binding = 0) uniform samplerBuffer current_in;
-layout(set = 0, binding = 1) uniform samplerBuffer history_in;
-layout(set = 0, binding = 2) uniform samplerBuffer motion_in;
+RTDR_INPUT_RGBA(0, current_in)
+RTDR_INPUT_RGBA(1, history_in)
+RTDR_INPUT_RG(2, motion_in)
 layout(std430, set = 0, binding = 3) writeonly buffer Output { vec4 output_out[]; };
 
 layout(push_constant) uniform Push { TaaPush frame; };
 
 // filters/image.h's at_clamped: the pixel at (x, y) with x, y clamped into the image.
 int index_clamped(int x, int y) { return clamp(y, 0, int(frame.height) - 1) * int(frame.width) + clamp(x, 0, int(frame.width) - 1); }
-vec3 current_at_clamped(int x, int y) { return texelFetch(current_in, index_clamped(x, y)).rgb; }
-vec3 history_at_clamped(int x, int y) { return texelFetch(history_in, index_clamped(x, y)).rgb; }
+vec3 current_at_clamped(int x, int y) { return current_in(index_clamped(x, y)).rgb; }
+vec3 history_at_clamped(int x, int y) { return history_in(index_clamped(x, y)).rgb; }
 
 vec3 rgb_to_ycocg(vec3 rgb) {
   // [Malvar and Sullivan 2003]: Y = R/4 + G/2 + B/4, Co = R/2 - B/2, Cg = -R/4 + G/2 - B/4.
@@ -88,7 +88,7 @@ vec3 taa_pixel(int x, int y) {
   const vec3 c = current_at_clamped(x, y);
 
   // 1. Reprojection: where this pixel's content was in the last output [Karis14; TRMV21 Eq. 1 for m].
-  const vec2 q = taa_history_position(x, y, texelFetch(motion_in, y * int(frame.width) + x).xy);
+  const vec2 q = taa_history_position(x, y, motion_in(y * int(frame.width) + x).xy);
   const bool history_on_screen = frame.has_history != 0u && q.x >= 0.0 && q.y >= 0.0 && q.x < float(frame.width) &&
                                  q.y < float(frame.height);
   if (!history_on_screen) return c;  // no history to trust: the current colour alone

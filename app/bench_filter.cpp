@@ -9,6 +9,7 @@
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "gpu/svgf_vulkan.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -21,12 +22,24 @@ namespace rtdr {
 
 namespace {
 
-// Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..].
-std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup) {
+// Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..]. For the
+// Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands.
+std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup,
+                                          std::vector<std::pair<std::string, double>>* commands) {
   std::map<std::string, std::vector<double>> times;
+  std::vector<std::pair<std::string, std::vector<double>>> command_times;
+  const SvgfVulkan* gpu = dynamic_cast<const SvgfVulkan*>(&method);
   for (size_t f = 0; f < frames.size(); ++f) {
     method.filter(frames[f]);
     if (int(f) < warmup) continue;  // history still building: not timed
+    if (gpu) {
+      const auto& last = gpu->command_times();
+      command_times.resize(last.size());
+      for (size_t c = 0; c < last.size(); ++c) {
+        command_times[c].first = last[c].first;
+        command_times[c].second.push_back(last[c].second);
+      }
+    }
     double total = 0.0;
     for (const auto& [pass, ms] : method.pass_times()) {
       times[pass].push_back(ms);
@@ -36,6 +49,8 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
   }
   std::map<std::string, double> medians;
   for (const auto& [pass, ms] : times) medians[pass] = median(ms);
+  commands->clear();
+  for (const auto& [label, ms] : command_times) commands->emplace_back(label, median(ms));
   return medians;
 }
 
@@ -50,12 +65,14 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     std::vector<Frame> frames;
     for (int f = 0; f < warmup + o.runs; ++f) frames.push_back(render_frame(scene, f, size.width, size.height, {}));
     std::map<std::string, std::map<std::string, double>> medians;  // backend -> pass -> ms
+    std::vector<std::pair<std::string, double>> commands;           // the Vulkan frame's commands, in order
     std::string devices;
     for (const std::string& backend : backends) {
       const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
       if (m.context)
-        devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ")";
-      medians[backend] = time_passes(*m.method, frames, warmup);
+        devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
+                   (m.context->shader_inputs() == ShaderInputs::Texel ? "texel" : "storage") + "-buffer inputs)";
+      medians[backend] = time_passes(*m.method, frames, warmup, &commands);
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), devices.c_str(), o.runs);
@@ -87,6 +104,11 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
           *csv << "filter:" << o.method << ":cpu/vulkan," << name << ',' << size.width << ',' << size.height << ','
                << thread_count() << ",speedup_" << pass << ',' << speedup << '\n';
       }
+      std::printf("\n");
+    }
+    if (!commands.empty()) {
+      std::printf("  vulkan, command by command (median ms):");
+      for (const auto& [label, ms] : commands) std::printf(" %s %.3f", label.c_str(), ms);
       std::printf("\n");
     }
   }

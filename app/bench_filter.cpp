@@ -23,12 +23,14 @@ namespace rtdr {
 namespace {
 
 // Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..]. For the
-// Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands.
-std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup,
+// Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands; each frame's batch is
+// submitted `submits` times and the last one timed (--submits).
+std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup, int submits,
                                           std::vector<std::pair<std::string, double>>* commands) {
   std::map<std::string, std::vector<double>> times;
   std::vector<std::pair<std::string, std::vector<double>>> command_times;
-  const SvgfVulkan* gpu = dynamic_cast<const SvgfVulkan*>(&method);
+  SvgfVulkan* gpu = dynamic_cast<SvgfVulkan*>(&method);
+  if (gpu) gpu->set_submits(submits);
   for (size_t f = 0; f < frames.size(); ++f) {
     method.filter(frames[f]);
     if (int(f) < warmup) continue;  // history still building: not timed
@@ -72,7 +74,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
       if (m.context)
         devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
                    (m.context->shader_inputs() == ShaderInputs::Texel ? "texel" : "storage") + "-buffer inputs)";
-      medians[backend] = time_passes(*m.method, frames, warmup, &commands);
+      medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands);
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), devices.c_str(), o.runs);

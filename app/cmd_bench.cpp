@@ -59,6 +59,11 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--method", o->method, "the method --stage filter times (see rtdr filter)")->capture_default_str();
   sub->add_option("--backend", o->backend, "--stage filter: cpu, vulkan, or cpu,vulkan to compare them")
       ->capture_default_str();
+  sub->add_option("--submits", o->submits,
+                  "--backend vulkan: submit each frame's work this many times back to back and time the last, so a "
+                  "GPU runs at its working clock rather than idling while the host packs the next frame")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   return {sub, [o, sub] {
             // --backend alone means the filter stage, on pillars, 5 runs (a 1080p CPU frame takes seconds).
             if (sub->count("--backend") > 0 && sub->count("--stage") == 0) o->stage = "filter";

@@ -261,7 +261,6 @@ void ComputeBatch::begin() {
   vk_check(vkResetDescriptorPool(device, descriptor_pool_, 0), "vkResetDescriptorPool");
   vk_check(vkResetCommandBuffer(commands_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin_info{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin_info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vk_check(vkBeginCommandBuffer(commands_, &begin_info), "vkBeginCommandBuffer");
   if (query_pool_) vkCmdResetQueryPool(commands_, query_pool_, 0, 2 * max_commands_);
   labels_.clear();
@@ -349,7 +348,7 @@ void ComputeBatch::close_command(const std::string& label) {
   labels_.push_back(label);
 }
 
-void ComputeBatch::run() {
+void ComputeBatch::run(int submits) {
   VkDevice device = context_.device();
   // Make the shaders' and copies' writes visible to the host's reads (the buffers are host-coherent).
   VkMemoryBarrier barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -361,9 +360,11 @@ void ComputeBatch::run() {
   VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &commands_;
-  vk_check(vkResetFences(device, 1, &fence_), "vkResetFences");
-  vk_check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
-  vk_check(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  for (int i = 0; i < std::max(submits, 1); ++i) {
+    vk_check(vkResetFences(device, 1, &fence_), "vkResetFences");
+    vk_check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+    vk_check(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  }
 
   times_.clear();
   if (query_pool_ && !labels_.empty()) {

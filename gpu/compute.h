@@ -129,8 +129,11 @@ class ComputeBatch {
   // Records a copy of all of `from` into `to` (the same size), after every dispatch recorded before it: how
   // results reach a Memory::Readback buffer. Timed like a dispatch, under `label`.
   void copy(const GpuBuffer& from, GpuBuffer& to, const std::string& label);
-  // Submits what was recorded, waits, and makes the writes visible to the host; then starts a new batch.
-  void run();
+  // Submits what was recorded, waits, and makes the writes visible to the host; then starts a new batch. With
+  // submits > 1 the same commands run that many times back to back, each after the last has finished, and times()
+  // are the last run's: for timing a GPU at its working clock. Only for commands whose reruns give the same
+  // result (SvgfVulkan's frame does: it writes no buffer it reads).
+  void run(int submits = 1);
   // Each dispatch of the last run(): its label and device time in milliseconds (empty without timestamps).
   const std::vector<std::pair<std::string, double>>& times() const { return times_; }
   // Writes the last run's device time in milliseconds, summed over its dispatches, to *ms; leaves *ms untouched

@@ -137,7 +137,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // The results into readback memory: on a GPU the host reads device memory across the bus, uncached.
   batch_.copy(*b.colour, *b.colour_readback, "transfer");
   batch_.copy(*b.display[cur], *b.display_readback, "transfer");
-  batch_.run();
+  batch_.run(submits_);
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
 

@@ -35,6 +35,8 @@ class SvgfVulkan : public Method {
   // The last frame's commands one by one, in order, with their device times in ms (empty without timestamps):
   // what pass_times() sums per pass, e.g. each a-trous level on its own.
   const std::vector<std::pair<std::string, double>>& command_times() const { return batch_.times(); }
+  // Each frame's batch is submitted this many times (ComputeBatch::run; rtdr bench --submits). Default 1.
+  void set_submits(int submits) { submits_ = submits; }
 
  private:
   struct Buffers;  // every device plane, made for one frame size
@@ -44,6 +46,7 @@ class SvgfVulkan : public Method {
   ComputeBatch batch_;
   std::unique_ptr<Buffers> buffers_;
   int frames_ = 0;  // frames since the last reset: 0 means no history
+  int submits_ = 1;
 };
 
 }  // namespace rtdr

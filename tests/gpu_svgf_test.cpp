@@ -119,6 +119,21 @@ TEST_CASE("the Vulkan pipeline follows the golden SVGF on rendered frames of eve
   check_no_validation_messages(*context);
 }
 
+TEST_CASE("a frame's batch submitted again gives the same frame (rtdr bench --submits)") {
+  const auto context = validated_context();
+  if (!context) return;
+  const Scene scene = load_scene("pillars");
+  SvgfVulkan once(*context, SvgfOptions{}), thrice(*context, SvgfOptions{});
+  thrice.set_submits(3);
+  for (int f = 0; f < 3; ++f) {
+    const Frame in = render_frame(scene, f, 32, 18, {});
+    const Frame a = once.filter(in, nullptr), b = thrice.filter(in, nullptr);
+    CHECK(rgb_plane(a, "color").data == rgb_plane(b, "color").data);
+    CHECK(rgb_plane(a, "display").data == rgb_plane(b, "display").data);
+  }
+  check_no_validation_messages(*context);
+}
+
 TEST_CASE("the Vulkan pipeline refuses what only the golden pipeline does") {
   const auto context = validated_context();
   if (!context) return;

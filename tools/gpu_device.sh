@@ -2,10 +2,12 @@
 # Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
 # no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
 # take .gl/ and .deps/ along. Usage, from the repository root:
-#   bash tools/gpu_device.sh [info] [test] [bench]      (default: all three)
+#   bash tools/gpu_device.sh [info] [test] [bench]      (default: all three; none of them: build only)
 #     info   the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
 #     test   a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
-#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080
+#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080, then the ports built for
+#            texel-buffer inputs (RTDR_VK_INPUTS=texel) alone; each frame submitted 10 times back to back and
+#            the last timed, so that the GPU runs at its working clock (rtdr bench --submits)
 # Logs and bench.csv go to $OUT (default out/device).
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +15,7 @@ OUT=${OUT:-out/device}
 mkdir -p "$OUT"
 steps=("$@")
 ((${#steps[@]})) || steps=(info test bench)
+[ "${steps[*]}" = build ] && steps=()
 wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
 
 # The loaders go into / (they are what a GPU machine's driver expects to find); everything else into a prefix.
@@ -30,6 +33,10 @@ icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 if [ -f "$icd" ] && ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
   export VK_DRIVER_FILES="$icd" VK_ICD_FILENAMES="$icd"
 fi
+
+# For commands run after this script on the same machine: `source /tmp/deps/env.sh`.
+declare -p PATH LD_LIBRARY_PATH VK_LAYER_PATH >"$DEPS/env.sh"
+declare -p VK_DRIVER_FILES VK_ICD_FILENAMES >>"$DEPS/env.sh" 2>/dev/null
 
 if wants info; then
   nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv 2>&1 |
@@ -67,9 +74,18 @@ if wants test; then
 fi
 
 if wants bench; then
+  # The SM clock while the benchmarks run (the card as found: its settings are never changed).
+  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
+    >"$OUT/clocks.csv" 2>&1 &
+  clocks=$!
   for size in 1280x720 1920x1080; do
+    # The ports as a GPU runs them (storage-buffer inputs) against the golden passes, then the texel-buffer build.
     "$BUILD/app/rtdr" bench --backend cpu,vulkan --scenes pillars --size "$size" --runs 20 --warmup 5 \
-      --csv "$OUT/bench_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+      --submits 10 --csv "$OUT/bench_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+    echo "RTDR_VK_INPUTS=texel:" | tee -a "$OUT/bench.txt"
+    RTDR_VK_INPUTS=texel "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
+      --warmup 5 --submits 10 --csv "$OUT/bench_texel_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
   done
+  kill "$clocks"
 fi
 exit $status

@@ -8,9 +8,9 @@
 // whose set 0 holds one binding per entry of its Binding list, in order, plus one push-constant block:
 //   Binding::Texel    a uniform texel buffer, read with texelFetch (the buffer needs a texel format);
 //   Binding::Storage  a storage buffer, read or written as an std430 array.
-// Why texel buffers for inputs: on lavapipe a storage-buffer load runs one lane at a time and one 32-bit
+// Why texel buffers for inputs on lavapipe: a storage-buffer load runs one lane at a time and one 32-bit
 // component at a time, while a texel fetch gathers a whole texel for all lanes at once (3x faster measured on
-// the remodulation shader, docs/performance.md); on GPUs texel fetches go through the texture cache.
+// the remodulation shader, docs/performance.md). On a GPU the ports read storage buffers (core/shader_shared.h).
 //
 // A ComputeBatch records several dispatches into one command buffer, with a barrier between consecutive ones (each
 // dispatch sees the previous ones' writes), submits them once and waits; each dispatch is timed by timestamp

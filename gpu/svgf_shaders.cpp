@@ -8,6 +8,9 @@ namespace rtdr {
 
 namespace {
 
+static_assert(kTemporalTexelBindings + kTemporalStorageBindings <= kStorageInputBindings,
+              "VulkanContext picks storage inputs only where the device allows every port's bindings");
+
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
 std::vector<Binding> bindings(ShaderInputs inputs, uint32_t texel, uint32_t storage) {

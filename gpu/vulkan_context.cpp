@@ -110,16 +110,23 @@ VkPhysicalDevice choose_device(VkInstance instance) {
   return nvidia ? nvidia : first;
 }
 
-// VulkanOptions::inputs resolved for a device of `type`.
-ShaderInputs resolve_inputs(ShaderInputs wanted, VkPhysicalDeviceType type) {
-  if (wanted != ShaderInputs::Auto) return wanted;
+// VulkanOptions::inputs resolved for a device with `properties`.
+ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDeviceProperties& properties) {
+  const bool storage_fits = properties.limits.maxPerStageDescriptorStorageBuffers >= kStorageInputBindings;
   const char* env = std::getenv("RTDR_VK_INPUTS");
-  if (env && *env) {
-    if (std::strcmp(env, "texel") == 0) return ShaderInputs::Texel;
-    if (std::strcmp(env, "storage") == 0) return ShaderInputs::Storage;
-    throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
+  if (wanted == ShaderInputs::Auto && env && *env) {
+    if (std::strcmp(env, "texel") == 0) wanted = ShaderInputs::Texel;
+    else if (std::strcmp(env, "storage") == 0) wanted = ShaderInputs::Storage;
+    else throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
   }
-  return type == VK_PHYSICAL_DEVICE_TYPE_CPU ? ShaderInputs::Texel : ShaderInputs::Storage;
+  if (wanted == ShaderInputs::Auto)
+    return properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && storage_fits ? ShaderInputs::Storage
+                                                                                 : ShaderInputs::Texel;
+  if (wanted == ShaderInputs::Storage && !storage_fits)
+    throw Error(std::string("Vulkan: ") + properties.deviceName + " allows " +
+                std::to_string(properties.limits.maxPerStageDescriptorStorageBuffers) +
+                " storage buffers per stage; storage inputs need " + std::to_string(kStorageInputBindings));
+  return wanted;
 }
 
 }  // namespace
@@ -160,7 +167,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(physical_device_, &properties);
     device_name_ = properties.deviceName;
-    inputs_ = resolve_inputs(options.inputs, properties.deviceType);
+    inputs_ = resolve_inputs(options.inputs, properties);
     timestamp_period_ns_ = properties.limits.timestampPeriod;
     const uint32_t family = uint32_t(compute_queue_family(physical_device_, &timestamp_valid_bits_));
 

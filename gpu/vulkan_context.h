@@ -23,9 +23,13 @@ enum class ShaderInputs { Auto, Texel, Storage };
 
 struct VulkanOptions {
   bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages
-  // Auto: $RTDR_VK_INPUTS (texel or storage) when set; else texel on a CPU device (lavapipe), storage on a GPU.
+  // Auto: $RTDR_VK_INPUTS (texel or storage) when set; else texel on a CPU device (lavapipe), storage on a GPU
+  // that allows kStorageInputBindings storage buffers per shader stage (the Vulkan minimum is 4), else texel.
   ShaderInputs inputs = ShaderInputs::Auto;
 };
+
+// The most storage buffers a port binds with storage inputs: the temporal pass's 16 planes (temporal_shared.h).
+inline constexpr uint32_t kStorageInputBindings = 16;
 
 // What the validation layer said: warnings and errors only (info and verbose are not kept).
 struct ValidationLog {

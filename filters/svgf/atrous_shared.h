@@ -4,7 +4,7 @@
 // preprocessor, and core/shader_shared.h maps GLSL's types to C++.
 //
 // Buffer layout (filters/svgf/planes_shared.h): bindings 0-1 the illumination records (c_i, Var(c_i)) of the direct
-// and the indirect stream, 2 the surface record, 3 the depth gradient, all texel buffers; 4-5 the records
+// and the indirect stream, 2 the surface record, 3 the depth gradient, all inputs (RTDR_INPUT_*); 4-5 the records
 // (c_{i+1}, Var(c_{i+1})) written, 6 g3x3(Var(c_i)) of both streams written (vec2 per pixel) when keep_prefiltered.
 //
 // Accuracy of the port: the shader does the golden functions' fp32 operations in the same order (the sums and

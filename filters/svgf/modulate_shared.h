@@ -4,7 +4,7 @@
 // maps the types.
 //
 // Bindings (layout: planes_shared.h): 0-1 the direct and indirect illumination records, 2-3 the albedo and emission
-// colour records, texel buffers; 4 the colour record written.
+// colour records, inputs (RTDR_INPUT_*); 4 the colour record written.
 #ifndef RTDR_FILTERS_SVGF_MODULATE_SHARED_H
 #define RTDR_FILTERS_SVGF_MODULATE_SHARED_H
 

@@ -2,9 +2,10 @@
 // (gpu/svgf_planes.h) and the GLSL that reads them (filters/svgf/*.comp). Both compilers include this file.
 //
 // Every plane is row-major, pixel (x, y) at texel y * width + x, and fp32 throughout (no packing changes a value:
-// the ports stay within the error bounds of docs/equations.md). Inputs are texel buffers, read with texelFetch;
-// outputs are std430 arrays of the same texels. Several planes share one RGBA32F texel, so that a tap costs one
-// fetch per record rather than one per plane (docs/performance.md, "Lavapipe"):
+// the ports stay within the error bounds of docs/equations.md). Inputs are read through core/shader_shared.h's
+// RTDR_INPUT_* (texel buffers on lavapipe, storage buffers on a GPU); outputs are std430 arrays of the same
+// texels. Several planes share one RGBA32F texel, so that a tap costs one fetch per record rather than one per
+// plane (docs/performance.md, "Lavapipe"):
 //   surface      RGBA32F  (n.x, n.y, n.z, z): world normal and linear view depth; z = kNoSurfaceDepth (-1) where
 //                         the pixel has no surface (a visible surface always has z > 0, in front of the camera)
 //   illumination RGBA32F  (r, g, b, variance): one stream's colour and its variance estimate; the noisy input and

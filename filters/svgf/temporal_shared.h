@@ -4,7 +4,7 @@
 // preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (layout of each plane: planes_shared.h; the history's planes are prev_width x prev_height):
-//   0-1 noisy illumination C_i, direct and indirect                                    texel buffers
+//   0-1 noisy illumination C_i, direct and indirect                                    inputs (RTDR_INPUT_*)
 //   2 surface, 3 depth gradient, 4 mesh id, 5 motion                                   current G-buffer
 //   6-7 illumination C'_{i-1}, 8-9 moments (mu1', mu2', n) of the direct and indirect  TemporalHistory
 //   10 surface, 11 mesh id                                                             TemporalHistory::surface
@@ -23,7 +23,8 @@ namespace rtdr {
 #endif
 
 // The number of bindings (0..15 above): 12 texel buffers and 4 storage buffers, within every Vulkan device's
-// per-stage minimums (16 sampled, 4 storage).
+// per-stage minimums (16 sampled, 4 storage). Built for storage inputs (core/shader_shared.h) all 16 are storage
+// buffers, which the context picks only where the device allows that many (gpu/vulkan_context.h).
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalTexelBindings = 12;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalStorageBindings = 4;
 

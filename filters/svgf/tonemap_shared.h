@@ -3,7 +3,7 @@
 // Both compilers include this file; GLSL has the C preprocessor, and the #ifdef __cplusplus block maps GLSL's
 // `uint` to C++.
 //
-// Bindings (layout: planes_shared.h): 0 the HDR colour record, a texel buffer; 1 the display colour record written.
+// Bindings (layout: planes_shared.h): 0 the HDR colour record, an input (RTDR_INPUT_*); 1 the display colour written.
 #ifndef RTDR_FILTERS_SVGF_TONEMAP_SHARED_H
 #define RTDR_FILTERS_SVGF_TONEMAP_SHARED_H
 

@@ -3,7 +3,7 @@
 // preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (layout of each plane: planes_shared.h): 0-1 illumination C' and 2-3 moments (mu1', mu2', n) of the
-// direct and the indirect stream (TemporalOutput), 4 surface, 5 depth gradient, all texel buffers; 6-7 the
+// direct and the indirect stream (TemporalOutput), 4 surface, 5 depth gradient, all inputs (RTDR_INPUT_*); 6-7 the
 // illumination records (C', sigma'^2) written.
 #ifndef RTDR_FILTERS_SVGF_VARIANCE_SHARED_H
 #define RTDR_FILTERS_SVGF_VARIANCE_SHARED_H

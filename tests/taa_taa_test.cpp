@@ -1,11 +1,15 @@
 // Tests of filters/taa/taa.cpp: YCoCg by hand, the Halton(2,3) jitter, bilinear reprojection, the history
-// clip and clamp by hand, the blend weight, jitter compensation, and fixed points (constant and static images).
+// clip (onto the padded box) and clamp by hand, the clip's continuity where the box is flat and its Lipschitz
+// bound, the blend weight, jitter compensation, and fixed points (constant and static images).
 #include "filters/taa/taa.h"
 
 #include "core/error.h"
+#include "filters/taa/taa_shared.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 using Catch::Detail::Approx;
@@ -53,6 +57,32 @@ RgbPlane known_box_image() {
   return p;
 }
 
+// The clip's bounds below are derived for the padding e = 1/1024 of taa_shared.h. Beyond a face F of channel i,
+// t = (F - mean_i) / d_i with d_i = h_i - mean_i >= F - mean_i >= e, so |dt/dh_i| = t / d_i <= 1 / e, and the
+// output mean + t (h - mean) moves by at most |dh| (1 + |h - mean| / e) when the history moves by dh. The tests
+// write e as this design value, not as kTaaClipPadding, so that an unpadded clip (e = 0, Karis14's bare box) fails
+// them instead of making their bounds infinite.
+constexpr float kPadding = 1.0f / 1024.0f;
+// Each evaluation of the clip rounds face - mean, d, their quotient, h - mean, the product and the sum: within
+// 5e-7 of the exact clip for |h - mean| <= 1.5, so two evaluations may differ by 1e-6 more than the exact ones.
+constexpr double kClipRounding = 1e-6;
+
+double max_abs_diff(const glm::vec3& a, const glm::vec3& b) {
+  double d = 0.0;
+  for (int i = 0; i < 3; ++i) d = std::max(d, std::abs(double(a[i]) - double(b[i])));
+  return d;
+}
+
+// The Lipschitz bound of the padded clip between histories h1 and h2 (same mean and box): |h2 - h1| (1 + r / e),
+// r the largest |h - mean| of either; 1e-3 relative more because the face box + e rounds (e is off by < 1e-4 of
+// itself, an ulp of the box).
+double clip_bound(const glm::vec3& h1, const glm::vec3& h2, const glm::vec3& mean) {
+  double r = 0.0;
+  for (int i = 0; i < 3; ++i)
+    r = std::max({r, std::abs(double(h1[i]) - double(mean[i])), std::abs(double(h2[i]) - double(mean[i]))});
+  return max_abs_diff(h1, h2) * (1.0 + r / kPadding) * (1.0 + 1e-3) + kClipRounding;
+}
+
 }  // namespace
 
 TEST_CASE("YCoCg of a few colours by hand, and the round trip") {
@@ -85,7 +115,7 @@ TEST_CASE("Halton radical inverse and the jitter sequence by hand") {
   }
 }
 
-TEST_CASE("the jitter repeats with its period, stays in [-0.5, 0.5)^2 and averages to about 0") {
+TEST_CASE("the jitter repeats with its period, stays in -0.5 <= x, y < 0.5 and averages to about 0") {
   for (int f = -20; f < 40; ++f) CHECK(taa_jitter(f) == taa_jitter(f + 8));
   CHECK(taa_jitter(-1) == taa_jitter(7));
   CHECK(taa_jitter(5, 4) == taa_jitter(1, 4));
@@ -184,7 +214,7 @@ TEST_CASE("jitter compensation: a static scene rendered with jitter reads the hi
   check_close(shifted, glm::vec3(0.1f * 0.32f + 0.9f * (0.325f + 0.01f * (2.0f + 5.0f / 9.0f))));
 }
 
-TEST_CASE("a history far outside the box is clipped towards the mean onto the box (by hand)") {
+TEST_CASE("a history far outside the box is clipped towards the mean onto the padded box (by hand)") {
   const RgbPlane current = known_box_image();
   const RgbPlane red(3, 3, glm::vec3(1.0f, 0.0f, 0.0f));
   Probe probe;
@@ -193,16 +223,26 @@ TEST_CASE("a history far outside the box is clipped towards the mean onto the bo
   check_close(probe.find("box max (YCoCg)").value, {0.6f, 0.1f, 0.1f});
   check_close(probe.find("box mean (YCoCg)").value, {0.5f, 0.0f, 0.0f});
   check_close(probe.find("history (YCoCg)").value, {0.25f, 0.5f, -0.25f});
-  // From the mean, history - mean = (-0.25, 0.5, -0.25). The faces it crosses: Y = 0.4 at t = 0.4, Co = 0.1 at
-  // t = 0.2, Cg = -0.1 at t = 0.4. The first is Co at t = 0.2: (0.5, 0, 0) + 0.2 (-0.25, 0.5, -0.25).
-  CHECK(probe.find("clip t (1: inside the box)").value[0] == Approx(0.2f).margin(1e-6));
-  check_close(probe.find("history clipped (YCoCg)").value, {0.45f, 0.1f, -0.05f});
-  // Blend 0.1 (0.5, 0, 0) + 0.9 (0.45, 0.1, -0.05) = (0.455, 0.09, -0.045) -> RGB (0.59, 0.41, 0.41).
-  check_close(probe.find("blend alpha c + (1 - alpha) h (YCoCg)").value, {0.455f, 0.09f, -0.045f});
-  check_close(out, {0.59f, 0.41f, 0.41f});
+  // The clip box is padded by e = 1/1024 (taa_shared.h): [0.4 - e, 0.6 + e] x [-0.1 - e, 0.1 + e]^2. From the
+  // mean, history - mean = (-0.25, 0.5, -0.25). The faces it crosses: Y = 0.4 - e at t = (0.1 + e) / 0.25 =
+  // 0.4 + 4e, Co = 0.1 + e at t = 0.2 + 2e, Cg = -0.1 - e at t = 0.4 + 4e. The first is Co at t = 0.2 + 2e =
+  // 0.201953125: (0.5, 0, 0) + t (-0.25, 0.5, -0.25) = (0.45 - e/2, 0.1 + e, -0.05 - e/2).
+  const float e = kTaaClipPadding;
+  CHECK(e == 1.0f / 1024.0f);
+  CHECK(probe.find("clip t (1: inside the padded box)").value[0] == Approx(0.201953125).margin(1e-6));
+  check_close(probe.find("history clipped (YCoCg)").value, {0.44951171875f, 0.1009765625f, -0.05048828125f});
+  check_close(probe.find("history clipped (YCoCg)").value, {0.45f - e / 2.0f, 0.1f + e, -0.05f - e / 2.0f});
+  // Blend 0.1 (0.5, 0, 0) + 0.9 clipped = (0.455 - 0.45e, 0.09 + 0.9e, -0.045 - 0.45e); to RGB with
+  // R = Y + Co - Cg, G = Y + Cg, B = Y - Co - Cg: (0.59 + 0.9e, 0.41 - 0.9e, 0.41 - 0.9e).
+  check_close(probe.find("blend alpha c + (1 - alpha) h (YCoCg)").value,
+              {0.455f - 0.45f * e, 0.09f + 0.9f * e, -0.045f - 0.45f * e});
+  check_close(out, {0.59087890625f, 0.40912109375f, 0.40912109375f});
   // The same by the helper directly.
   check_close(clip_towards_mean({0.25f, 0.5f, -0.25f}, {0.5f, 0.0f, 0.0f}, {0.4f, -0.1f, -0.1f}, {0.6f, 0.1f, 0.1f}),
-              {0.45f, 0.1f, -0.05f});
+              {0.45f - e / 2.0f, 0.1f + e, -0.05f - e / 2.0f});
+  // A history inside the padding (a quarter of e beyond the bare face) is kept as it is.
+  const glm::vec3 in_padding(0.5f, 0.1f + e / 4.0f, 0.0f);
+  CHECK(clip_towards_mean(in_padding, {0.5f, 0.0f, 0.0f}, {0.4f, -0.1f, -0.1f}, {0.6f, 0.1f, 0.1f}) == in_padding);
 }
 
 TEST_CASE("with clipping off the history is clamped per component (by hand)") {
@@ -214,6 +254,83 @@ TEST_CASE("with clipping off the history is clamped per component (by hand)") {
   // clamp((0.25, 0.5, -0.25)) = (0.4, 0.1, -0.1); blend (0.41, 0.09, -0.09) -> RGB (0.59, 0.32, 0.41).
   check_close(probe.find("history clamped (YCoCg)").value, {0.4f, 0.1f, -0.1f});
   check_close(out, {0.59f, 0.32f, 0.41f});
+}
+
+TEST_CASE("where the box is flat the clip is continuous: a history on the padded face and an ulp beyond it") {
+  CHECK(kTaaClipPadding == kPadding);
+  // A grey neighbourhood: luma from 0.2 to 0.8 around the mean 0.5, no chroma, so the box is flat in Co and Cg.
+  const glm::vec3 mean(0.5f, 0.0f, 0.0f), box_min(0.2f, 0.0f, 0.0f), box_max(0.8f, 0.0f, 0.0f);
+  for (int i = 1; i < 3; ++i) {                 // Co, Cg
+    for (const float side : {1.0f, -1.0f}) {    // the upper face, the lower face
+      // The face as clip_towards_mean computes it, and the next float beyond it.
+      const float face = side > 0.0f ? box_max[i] + kTaaClipPadding : box_min[i] - kTaaClipPadding;
+      glm::vec3 on(0.7f, 0.0f, 0.0f), beyond = on;
+      on[i] = face;
+      beyond[i] = std::nextafter(face, side * INFINITY);
+      INFO("YCoCg channel " << i << ", face at " << face);
+      // On the face the history is inside and kept (t = 1); an ulp beyond it t = (face - mean) / d is just
+      // below 1. Karis14's bare box (e = 0) sent the second to the mean, 0.2 away in luma: the jump padding removes.
+      const glm::vec3 kept = clip_towards_mean(on, mean, box_min, box_max);
+      CHECK(kept == on);
+      const glm::vec3 clipped = clip_towards_mean(beyond, mean, box_min, box_max);
+      CHECK(max_abs_diff(kept, clipped) <= clip_bound(on, beyond, mean));
+    }
+  }
+}
+
+TEST_CASE("over a grey neighbourhood a grey history an ulp off grey is blended, not replaced by the mean") {
+  // Luma 0.2 to 0.8, mean 0.5; the YCoCg of a grey is exactly (g, 0, 0), so the box is flat at Co = Cg = 0.
+  RgbPlane current(3, 3);
+  for (int i = 0; i < 9; ++i) current.data[i] = glm::vec3(0.2f + 0.075f * float(i));
+  const glm::vec3 grey(0.7f);
+  const glm::vec3 reference = taa_pixel(current, RgbPlane(3, 3, grey), Vec2Plane(3, 3), 1, 1, TaaParams{});
+  check_close(reference, glm::vec3(0.1f * 0.5f + 0.9f * 0.7f));  // inside the box: the plain blend
+  // A history an ulp of 0.7 (2^-24) off in one channel, as a GPU's tone map leaves it: its YCoCg moves by about
+  // an ulp (the change and the conversion's roundings), the clip multiplies that by at most 1 + |h - mean| / e
+  // (|h - mean| <= 0.2 here), the blend by 0.9, and the RGB output sums three components: within 4 ulps
+  // (1 + 1/e). The bare box (e = 0) put this history at the mean: the output fell by 0.9 * 0.2 = 0.18.
+  const double bound = 4.0 * std::ldexp(1.0, -24) * (1.0 + 1.0 / kPadding);
+  for (int c = 0; c < 3; ++c) {
+    for (const float side : {1.0f, -1.0f}) {
+      glm::vec3 h = grey;
+      h[c] = std::nextafter(h[c], side * INFINITY);
+      INFO("RGB channel " << c << " moved by " << side << " ulp");
+      const glm::vec3 out = taa_pixel(current, RgbPlane(3, 3, h), Vec2Plane(3, 3), 1, 1, TaaParams{});
+      CHECK(max_abs_diff(out, reference) <= bound);
+    }
+  }
+}
+
+TEST_CASE("the clip is Lipschitz in the history: |out(h + delta) - out(h)| <= |delta| (1 + max|h - mean| / e)") {
+  // Random boxes, a third of their channels flat, and histories half of whose channels lie within s of a padded
+  // face, moved by up to s per channel, s from 1e-7 to 1e-4: many cross a face, where Karis14's bare box jumps.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), sym(-1.0f, 1.0f);
+  int crossings = 0, violations = 0;
+  double worst = 0.0;  // the largest |out(h + delta) - out(h)| / bound
+  for (int trial = 0; trial < 200000; ++trial) {
+    glm::vec3 mean, box_min, box_max, h, moved;
+    const float scale = std::pow(10.0f, -7.0f + 3.0f * unit(rng));
+    for (int i = 0; i < 3; ++i) {
+      mean[i] = i == 0 ? unit(rng) : 0.5f * sym(rng);  // Y in [0, 1], Co and Cg in [-0.5, 0.5]
+      const bool flat = unit(rng) < 1.0f / 3.0f;
+      box_min[i] = flat ? mean[i] : mean[i] - 0.3f * unit(rng);
+      box_max[i] = flat ? mean[i] : mean[i] + 0.3f * unit(rng);
+      const float face = unit(rng) < 0.5f ? box_max[i] + kTaaClipPadding : box_min[i] - kTaaClipPadding;
+      h[i] = unit(rng) < 0.5f ? face + scale * sym(rng) : mean[i] + 0.6f * sym(rng);
+      moved[i] = h[i] + scale * sym(rng);
+      if ((h[i] > face) != (moved[i] > face)) ++crossings;
+    }
+    const double diff = max_abs_diff(clip_towards_mean(h, mean, box_min, box_max),
+                                     clip_towards_mean(moved, mean, box_min, box_max));
+    const double bound = clip_bound(h, moved, mean);
+    if (!(diff <= bound)) ++violations;
+    worst = std::max(worst, diff / bound);
+  }
+  INFO(crossings << " face crossings; the largest difference is " << worst << " of its bound");
+  CHECK(crossings > 50000);  // the test does exercise the faces
+  CHECK(violations == 0);
+  WARN("clip Lipschitz test: " << crossings << " face crossings, largest difference " << worst << " of its bound");
 }
 
 TEST_CASE("with the history inside the box the output is alpha * current + (1 - alpha) * history") {
@@ -241,7 +358,7 @@ TEST_CASE("missing or off-screen history: the output is the current colour") {
   CHECK(first_frame.data == image.data);
 }
 
-TEST_CASE("taa_pass is taa_pixel at every pixel; sizes and parameters are checked") {
+TEST_CASE("taa_pass is taa_pixel at every pixel, and checks sizes and parameters") {
   const RgbPlane current = random_image(9, 7, 21), history = random_image(9, 7, 22);
   Vec2Plane motion(9, 7);
   std::mt19937 rng(23);

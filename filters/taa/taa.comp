@@ -1,7 +1,7 @@
 // Temporal antialiasing after Karis14, the Vulkan port of taa_pixel (taa.cpp), line for line: reproject the
 // history (pixel centre + m - (j_prev - j_cur)), fetch it bilinearly, bound it by the current 3x3 YCoCg box
-// (clip towards the mean, or clamp), blend alpha * current + (1 - alpha) * history. Missing or off-screen
-// history: the current colour. One invocation per pixel.
+// (clip towards the mean onto the box padded by kTaaClipPadding, or clamp), blend alpha * current +
+// (1 - alpha) * history. Missing or off-screen history: the current colour. One invocation per pixel.
 //   in:  bindings 0-2: current, history (colour records), motion; out: binding 3: output. Layout:
 //   filters/svgf/planes_shared.h, taa_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction changes the rounding; the C++ rounds
@@ -64,19 +64,22 @@ vec3 sample_bilinear(vec2 position) {
   return value;
 }
 
-// The history colour clipped onto the neighbourhood box along the line towards its mean [Karis14 history clip].
+// The history colour clipped along the line towards the neighbourhood mean [Karis14 history clip], onto the box
+// padded by e = kTaaClipPadding on every face (taa_shared.h says why: a continuous clip).
 vec3 clip_towards_mean(vec3 history, vec3 mean, vec3 box_min, vec3 box_max) {
   // Walk from the mean towards the history: mean + t (history - mean), t in [0, 1]. Each face the history is
   // beyond stops the walk where the segment crosses it; the first crossing (smallest t) is on the box.
   float t = 1.0;
   for (int i = 0; i < 3; ++i) {
     precise float d = history[i] - mean[i];
-    if (history[i] > box_max[i]) {  // d > 0: mean <= box_max < history
-      precise float t_face = (box_max[i] - mean[i]) / d;
+    precise float face_max = box_max[i] + kTaaClipPadding;  // at least e beyond the mean: d >= e where it clips
+    precise float face_min = box_min[i] - kTaaClipPadding;
+    if (history[i] > face_max) {  // d > 0: mean < face_max < history
+      precise float t_face = (face_max - mean[i]) / d;
       t = min(t, t_face);
     }
-    if (history[i] < box_min[i]) {  // d < 0: history < box_min <= mean
-      precise float t_face = (box_min[i] - mean[i]) / d;
+    if (history[i] < face_min) {  // d < 0: history < face_min < mean
+      precise float t_face = (face_min - mean[i]) / d;
       t = min(t, t_face);
     }
   }

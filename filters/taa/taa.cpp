@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/taa/taa_shared.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,7 +71,10 @@ glm::vec3 sample_bilinear(const RgbPlane& plane, glm::vec2 position, Probe* prob
          (1.0f - fx) * fy * at_clamped(plane, x0, y0 + 1) + fx * fy * at_clamped(plane, x0 + 1, y0 + 1);
 }
 
-// The history colour clipped onto the neighbourhood box along the line towards its mean [Karis14 history clip].
+// The history colour clipped along the line towards the neighbourhood mean [Karis14 history clip], onto the box
+// padded by e = kTaaClipPadding on every face (taa_shared.h): without the padding, where the box is flat in a
+// channel, t jumps from 1 to 0 as the history crosses the face; with it, t is continuous and the output moves by
+// at most |dh| (1 + |h - mean| / e) when the history moves by dh.
 glm::vec3 clip_towards_mean(const glm::vec3& history, const glm::vec3& mean, const glm::vec3& box_min,
                             const glm::vec3& box_max, Probe* probe) {
   // Walk from the mean towards the history: mean + t (history - mean), t in [0, 1]. Each face the history is
@@ -78,10 +82,12 @@ glm::vec3 clip_towards_mean(const glm::vec3& history, const glm::vec3& mean, con
   float t = 1.0f;
   for (int i = 0; i < 3; ++i) {
     const float d = history[i] - mean[i];
-    if (history[i] > box_max[i]) t = std::min(t, (box_max[i] - mean[i]) / d);  // d > 0: mean <= box_max < history
-    if (history[i] < box_min[i]) t = std::min(t, (box_min[i] - mean[i]) / d);  // d < 0: history < box_min <= mean
+    const float face_max = box_max[i] + kTaaClipPadding;  // at least e beyond the mean: d >= e where it clips
+    const float face_min = box_min[i] - kTaaClipPadding;
+    if (history[i] > face_max) t = std::min(t, (face_max - mean[i]) / d);  // d > 0: mean < face_max < history
+    if (history[i] < face_min) t = std::min(t, (face_min - mean[i]) / d);  // d < 0: history < face_min < mean
   }
-  note(probe, "clip t (1: inside the box)", t, "Karis14: clip towards the mean");
+  note(probe, "clip t (1: inside the padded box)", t, "Karis14: clip towards the mean; padding taa_shared.h");
   return mean + t * (history - mean);
 }
 

@@ -9,9 +9,9 @@
 //
 // Per pixel: (1) reproject: read the history, bilinearly, where this pixel's content was last frame;
 // (2) bound it: the 3x3 neighbourhood of the current frame, in YCoCg, gives an axis-aligned box (min,
-// max); a history outside it is stale (disocclusion, changed shading) and is clipped onto the box along the
-// line towards the neighbourhood mean [Karis14] (or clamped per component); (3) blend: an exponential
-// moving average with weight alpha on the current frame; (4) back to RGB.
+// max); a history outside it is stale (disocclusion, changed shading) and is clipped onto the box (padded
+// by 1/1024, see the deviations) along the line towards the neighbourhood mean [Karis14] (or clamped per
+// component); (3) blend: an exponential moving average with weight alpha on the current frame; (4) back to RGB.
 //
 // Display space. TAA runs after tone mapping, the order of SVGF17 Sec. 3 (Fig. 2): averaged HDR values let
 // rare very bright samples dominate and flicker, and the box around a bright edge would be huge. Karis14
@@ -29,10 +29,17 @@
 // The current sample is used for pixel p as it is, without re-centring: its offset -j_cur lies inside the
 // pixel's square, and averaging over the jitter sequence is what box-filters the square (the supersampling).
 //
-// Deviations from Karis14 (each a simplification a port may upgrade):
+// Deviations from Karis14 (each a simplification a port may upgrade, except the padded clip, which keeps the
+// ports within a bound of this reference):
 // - History fetch is bilinear; Karis14 fetches with a Catmull-Rom (bicubic) filter, sharper under motion.
 //   Bilinear blurs a moving image a little more each frame, but is exact for the linear ramps we test on.
 // - The box is the plain 3x3 min/max; Karis14 also blends it with the 5-tap "plus" box to round it off.
+// - The clip's box is padded by e = kTaaClipPadding = 1/1024 on every face (taa_shared.h). Karis14 clips onto the
+//   bare box, which jumps where the box is flat in a channel (any grey neighbourhood's Co and Cg): a history on
+//   the face is kept, one an ulp beyond it is replaced by the mean. Padded, the clip is continuous, and an error
+//   dh in the history moves the output by at most |dh| (1 + |h - mean| / e), so a GPU port an ulp off the golden
+//   function stays within a bound of it (tests/gpu_svgf_test.cpp). The cost: a history up to e (a quarter of an
+//   8-bit step) outside the box survives.
 // - The motion vector is this pixel's; Karis14 takes the one of the nearest depth in the 3x3 (edge dilation).
 // - No luminance-weighted blend (Karis14's 1 / (1 + luma)): we are already in display space.
 // - The current colour is not filtered to the pixel centre (Karis14 resolves it with a Blackman-Harris fit).
@@ -46,7 +53,7 @@
     "weight of the current frame: 'Typically we blend 10% of the current frame' (Salvi 2016, GDC, "                  \
     "'An Excursion in Temporal Supersampling')")                                                                     \
   X(int, clip_history, 1, 0, 1, "",                                                                                   \
-    "1: clip the history towards the 3x3 mean onto the YCoCg box (Karis14); 0: clamp each YCoCg component")          \
+    "1: clip the history towards the 3x3 mean onto the padded YCoCg box (Karis14); 0: clamp each YCoCg component")   \
   X(int, jitter_period, 8, 1, 1 << 20, "",                                                                            \
     "Halton(2,3) points before the jitter repeats; 8 as in Unreal Engine 4's TAA, the TAA of Karis14")
 
@@ -99,8 +106,9 @@ glm::vec2 taa_history_position(int x, int y, glm::vec2 motion, const TaaJitter& 
 // The bilinear value of `plane` at screen position `position` (pixel centres at +0.5), taps clamped to the
 // image. The caller checks that the position is on screen.
 glm::vec3 sample_bilinear(const RgbPlane& plane, glm::vec2 position, Probe* probe = nullptr);
-// The point where the segment from `mean` (inside the box) to `history` leaves the box [box_min, box_max];
-// `history` itself when it is inside. Karis14's "clip" (against "clamp", which moves each component alone).
+// The point where the segment from `mean` (inside the box) to `history` leaves the padded box
+// [box_min - e, box_max + e], e = kTaaClipPadding (taa_shared.h); `history` itself when it is inside. Karis14's
+// "clip" (against "clamp", which moves each component alone), padded so that it is continuous in its inputs.
 glm::vec3 clip_towards_mean(const glm::vec3& history, const glm::vec3& mean, const glm::vec3& box_min,
                             const glm::vec3& box_max, Probe* probe = nullptr);
 

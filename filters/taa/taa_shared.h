@@ -19,6 +19,19 @@ namespace rtdr {
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeX = 8;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeY = 8;
 
+// The history clip's padding e: clip_towards_mean (taa.cpp, taa.comp) clips onto the box [box_min - e, box_max + e]
+// per YCoCg channel, not onto the bare 3x3 box of Karis14. Why: where the box is flat in a channel (box_min =
+// box_max = mean, e.g. Co and Cg of any grey neighbourhood) the bare clip jumps: a history on the face keeps t = 1,
+// one an ulp beyond it gets t = (box_max - mean) / d = 0, the mean. Padded, the face is at least e from the mean:
+// a history at h = box_max + e has d = h - mean = box_max + e - mean and t = d / d = 1, so t is continuous, and
+// beyond the face t = (box_max + e - mean) / d with d >= e moves by at most |dh| / e. The clipped history then
+// moves by at most |dh| (1 + |h - mean| / e): about 1025 |dh| for display values in [0, 1] (|h - mean| <= 1).
+// Playdead's TAA for INSIDE (github.com/playdeadgames/temporal, TemporalReprojection.shader, clip_aabb) has a
+// similar margin, FLT_EPS = 1e-8: it clips only a history beyond face + FLT_EPS, but onto the bare face, so a flat
+// box still jumps; so tiny a margin bounds nothing. 1/1024 is a quarter of an 8-bit display step (1/255):
+// invisible, yet it bounds the clip's sensitivity (tests/taa_taa_test.cpp, tests/gpu_svgf_test.cpp).
+RTDR_SHARED_CONST float kTaaClipPadding = 1.0f / 1024.0f;
+
 // The push-constant block (std430 in GLSL; every member sits at its natural C++ offset, vec2s at multiples of 8).
 struct TaaPush {
   RTDR_SHARED_UINT width;            // the frame size: invocations outside it (the last tiles) do nothing

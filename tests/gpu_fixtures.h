@@ -61,7 +61,8 @@ inline RgbPlane random_plane(std::mt19937& rng, int w, int h, float lo, float hi
   return p;
 }
 
-// Per channel, the largest absolute and relative (to the golden value) difference.
+// Per channel, the largest absolute and relative (to the golden value) difference; a NaN on either side counts
+// as an infinite difference (std::max would drop it).
 struct RgbErrors {
   glm::dvec3 abs{0.0}, rel{0.0};
 };
@@ -70,7 +71,8 @@ inline RgbErrors compare_rgb(const RgbPlane& gpu, const RgbPlane& golden) {
   RgbErrors e;
   for (size_t i = 0; i < golden.data.size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      const double diff = std::abs(double(gpu.data[i][c]) - double(golden.data[i][c]));
+      double diff = std::abs(double(gpu.data[i][c]) - double(golden.data[i][c]));
+      if (std::isnan(diff)) diff = std::numeric_limits<double>::infinity();
       e.abs[c] = std::max(e.abs[c], diff);
       if (golden.data[i][c] != 0.0f) e.rel[c] = std::max(e.rel[c], diff / std::abs(double(golden.data[i][c])));
     }

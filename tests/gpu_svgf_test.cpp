@@ -10,13 +10,30 @@
 // in steady state. The edge-stopping weights see those differences too, so 2e-3 leaves room for their
 // second-order effect. The floor 1e-2 keeps near-black pixels from dividing by almost nothing.
 //
-// The display colour (after TAA) is checked differently: it must equal, bit for bit, the golden tone mapping and
-// TAA (tonemap(), taa_pass()) applied to the pipeline's own colour and its own previous display. Comparing it with
-// the golden pipeline's display within a bound cannot work, because TAA is not continuous in its inputs: where the
-// 3x3 neighbourhood's box is flat in a channel (box_min = box_max = mean: Co and Cg of any grey neighbourhood), a
-// history an ulp inside the box keeps t = 1 and one an ulp outside clips to t = 0 (Karis14's clip, taa.cpp). With
-// colours 1e-6 apart, 8% of pillars' display pixels differ by more than 2e-3 on frame 1 and 20% by frame 9, and
-// the differences persist through the TAA history (measured; printed by the first test).
+// The display colour (after TAA) is checked against the golden tone mapping and TAA (tonemap(), taa_pass()) of the
+// pipeline's own colour and its own previous display, per channel: |gpu - golden| <= kDisplayAbsError = 1e-3
+// (display values are in [0, 1]). Derivation: only the tone-mapped current colours differ, by at most 1e-6 per
+// channel (tests/gpu_tonemap_test.cpp); the history is the same previous display on both sides. The YCoCg of the
+// current, hence the box faces F and the mean m, then move by at most 1e-6 (each YCoCg row's weights sum to 1 in
+// absolute value). The history clip onto the padded box (taa_shared.h) has t = (F - m) / d with d = h - m and
+// F - m >= e, so t moves by at most (t dF + t (1 - t) dm) / e <= 1e-6 / e, and the clipped history
+// m + t (h - m) by at most (1 - t) dm + dt |h - m| <= 1e-6 (1 + 1/e) = 1.025e-3 for |h - m| <= 1 (display
+// colours). The blend weighs it by 1 - alpha = 0.9 and adds alpha * 1e-6: 9.23e-4. The TAA port on equal inputs
+// is within 2e-6 (tests/gpu_taa_test.cpp), except that its mean sum / 9 (2.5 ulp, 1.5e-7) moves t by up to
+// t (1 - t) / e <= 256 times that: 0.9 * 256 * 1.5e-7 = 3.5e-5, and the golden mean's own rounding (0.5 ulp)
+// 7e-6. In all 9.7e-4 <= 1e-3; the rest covers a history (a TAA output) a little outside [0, 1], where a box
+// corner leaves the RGB cube: |h - m| up to 1.03. On lavapipe, whose divisions round correctly, the difference
+// is 0.
+//
+// Before the padding the display could not be bounded at all: Karis14's bare box jumps where it is flat in a
+// channel (box_min = box_max = mean: Co and Cg of any grey neighbourhood), a history an ulp inside it keeping
+// t = 1 and one an ulp outside clipping to t = 0, so a tone map an ulp off the golden one (a GPU's division is
+// not correctly rounded) could move a display pixel to the mean. Nor could the display be compared with the
+// golden pipeline's: with colours 1e-6 apart, 19.5% of pillars' display pixels differed by more than
+// kPipelineRelError within 10 frames, and the differences persisted through the TAA history. Padded, the
+// fraction of display pixels beyond kPipelineRelError against the golden pipeline's display is printed (not
+// asserted; colours up to 2e-3 apart may move a display by 1025 times that where the clip is at its steepest):
+// measured 0% on every shipped scene on lavapipe, the largest difference 1.9e-6 (occlusion).
 #include "gpu/svgf_vulkan.h"
 
 #include "filters/image.h"
@@ -40,6 +57,14 @@ namespace {
 
 constexpr double kPipelineRelError = 2e-3;
 constexpr double kRelFloor = 1e-2;
+constexpr double kDisplayAbsError = 1e-3;
+
+// The largest absolute difference over the three channels (compare_rgb, gpu_fixtures.h: a NaN counts as infinite).
+double max_abs_error(const RgbPlane& gpu, const RgbPlane& golden) {
+  REQUIRE(gpu.data.size() == golden.data.size());
+  const glm::dvec3 abs = compare_rgb(gpu, golden).abs;
+  return std::max({abs.x, abs.y, abs.z});
+}
 
 // Per pixel, the largest relative error of its three channels in `layer`.
 std::vector<double> rel_errors(const Frame& gpu, const Frame& golden, const std::string& layer) {
@@ -59,7 +84,10 @@ std::vector<double> rel_errors(const Frame& gpu, const Frame& golden, const std:
 
 struct PipelineErrors {
   double colour = 0.0;            // the largest relative error of the colour, over all frames
-  double display_outliers = 0.0;  // the largest fraction of a frame's display pixels beyond the bound (not asserted)
+  double display = 0.0;           // the largest absolute error of the display against the golden TAA of its inputs
+  double display_outliers = 0.0;  // the largest fraction of a frame's display pixels beyond kPipelineRelError
+                                  // against the golden pipeline's display (not asserted)
+  double display_golden = 0.0;    // the largest absolute error against the golden pipeline's display (not asserted)
 };
 
 Vec2Plane in_motion(const Frame& in) { return SurfacePlanes::from_frame(in).motion; }
@@ -87,9 +115,14 @@ PipelineErrors compare_pipelines(VulkanContext& context, const std::string& scen
     const RgbPlane tonemapped = tonemap(rgb_plane(got, "color"), TonemapParams{});
     const RgbPlane display_expected =
         f == 0 ? tonemapped : taa_pass(tonemapped, previous_display, in_motion(in), TaaParams{});
-    CHECK(rgb_plane(got, "display").data == display_expected.data);
+    const double display_max = max_abs_error(rgb_plane(got, "display"), display_expected);
+    INFO(scene_name << " frame " << f << ": display max absolute error " << display_max);
+    CHECK(display_max <= kDisplayAbsError);
     previous_display = rgb_plane(got, "display");
     worst.colour = std::max(worst.colour, colour_max);
+    worst.display = std::max(worst.display, display_max);
+    worst.display_golden =
+        std::max(worst.display_golden, max_abs_error(rgb_plane(got, "display"), rgb_plane(expected, "display")));
     worst.display_outliers = std::max(worst.display_outliers, outliers);
   }
   return worst;
@@ -102,9 +135,11 @@ TEST_CASE("the Vulkan pipeline follows the golden SVGF over 10 frames of pillars
   if (!context) return;
   INFO("device: " << context->device_name());
   const PipelineErrors worst = compare_pipelines(*context, "pillars", 96, 54, 10);
-  WARN("pillars, 10 frames at 96x54: colour max relative error " << worst.colour << " (bound " << kPipelineRelError
-                                                                    << "); display pixels beyond it (not asserted): "
-                                                                    << worst.display_outliers * 100.0 << "%");
+  WARN("pillars, 10 frames at 96x54: colour max relative error "
+       << worst.colour << " (bound " << kPipelineRelError << "); display max absolute error " << worst.display
+       << " (bound " << kDisplayAbsError << "); against the golden display (not asserted): "
+       << worst.display_outliers * 100.0 << "% of pixels beyond " << kPipelineRelError << ", max absolute error "
+       << worst.display_golden);
   check_no_validation_messages(*context);
 }
 
@@ -113,8 +148,9 @@ TEST_CASE("the Vulkan pipeline follows the golden SVGF on rendered frames of eve
   if (!context) return;
   for (const std::string& name : shipped_scene_names()) {
     const PipelineErrors worst = compare_pipelines(*context, name, 64, 36, 6);
-    WARN(name << ", 6 frames at 64x36: colour max relative error " << worst.colour << "; display pixels beyond it "
-              << "(not asserted): " << worst.display_outliers * 100.0 << "%");
+    WARN(name << ", 6 frames at 64x36: colour max relative error " << worst.colour << "; display max absolute error "
+              << worst.display << "; against the golden display (not asserted): " << worst.display_outliers * 100.0
+              << "% of pixels beyond " << kPipelineRelError << ", max absolute error " << worst.display_golden);
   }
   check_no_validation_messages(*context);
 }

@@ -124,7 +124,7 @@ TEST_CASE("depth_grad stays finite at grazing angles") {
   CHECK(std::abs(grad.x) == Approx(std::abs(expected_x)).epsilon(1e-3));
 }
 
-TEST_CASE("normals face the camera; the shading normal joins the geometric normal's hemisphere") {
+TEST_CASE("normals face the camera, the shading normal joins the geometric normal's hemisphere") {
   Scene s = camera_scene();
   // Seen from the back: the counter-clockwise front face points away from the camera (-Z), and so do the
   // vertex normals, which also tilt differently at each vertex.

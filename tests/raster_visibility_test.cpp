@@ -235,7 +235,7 @@ TEST_CASE("a triangle reaching far beyond the guard band is clipped to it and st
   CHECK(max_bary_error < 1e-6);
 }
 
-TEST_CASE("the nearest triangle wins; on equal depth the earlier one") {
+TEST_CASE("the nearest triangle wins, on equal depth the earlier one") {
   const int w = 16, h = 16;
   const ClipTriangle far_tri = screen_triangle({0, 0}, {16, 0}, {0, 16}, w, h, 3.0f, 0, 0);
   const ClipTriangle near_tri = screen_triangle({2, 2}, {14, 2}, {2, 14}, w, h, 2.0f, 1, 0);
@@ -291,7 +291,7 @@ TEST_CASE("the buffer is identical with 1 and 2 threads") {
   CHECK(std::count(one.instance.begin(), one.instance.end(), kInvalidId) == 0);  // the quad fills the view
 }
 
-TEST_CASE("object_point and world_point rebuild the sample's point; bad sizes are rejected") {
+TEST_CASE("object_point and world_point rebuild the sample's point, bad sizes are rejected") {
   Scene s = camera_scene();
   add_object(s, {{0, 0, 0}, {2, 0, 0}, {0, 4, 0}}, {{0, 1, 2}}, {1.0f, 2.0f, -3.0f});
   const SurfaceSample sample{0, 0, {0.25f, 0.5f}};

@@ -67,7 +67,7 @@ std::string tap(int dx, int dy) { return "tap (" + std::to_string(dx) + ", " + s
 
 }  // namespace
 
-TEST_CASE("the kernels are B3 (1/16, 1/4, 3/8, 1/4, 1/16) and the 3x3 box; other sizes throw", "[svgf][atrous]") {
+TEST_CASE("the kernels are B3 (1/16, 1/4, 3/8, 1/4, 1/16) and the 3x3 box, other sizes throw", "[svgf][atrous]") {
   const AtrousKernel b3 = atrous_kernel(5);
   CHECK(b3.radius == 2);
   for (int k = -2; k <= 2; ++k) CHECK(b3.h[k + 2] == float(h1(5, k)));

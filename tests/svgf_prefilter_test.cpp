@@ -44,7 +44,7 @@ TEST_CASE("g3x3 clamps at the border: a corner spike is read by four taps", "[sv
   CHECK(prefilter_variance_pixel(var, 2, 0) == 0.0f);
 }
 
-TEST_CASE("g3x3 probe records every tap and the sum; the plane equals the per-pixel function", "[svgf][prefilter]") {
+TEST_CASE("g3x3 probe records every tap and the sum, the plane equals the per-pixel function", "[svgf][prefilter]") {
   FloatPlane var(6, 5);
   for (int y = 0; y < var.height; ++y)
     for (int x = 0; x < var.width; ++x) var.at(x, y) = 0.1f * float(x) + 0.03f * float(y * y);

@@ -41,7 +41,7 @@ glm::vec3 probed_history(const RgbPlane& noisy, const SurfacePlanes& cur, const 
 
 }  // namespace
 
-TEST_CASE("static scene: exact running mean for n <= 1/alpha, then the EMA; converges to the mean") {
+TEST_CASE("static scene: exact running mean for n <= 1/alpha, then the EMA, converges to the mean") {
   const int w = 5, h = 4;
   const SurfacePlanes s = flat_surface(w, h);
   const SvgfParams params;  // alpha = alpha_moments = 0.2: alpha_eff = 1/n for n <= 5
@@ -188,7 +188,7 @@ TEST_CASE("consistency thresholds: small depth and normal changes keep the histo
   CHECK(SvgfParams{}.temporal_depth_relative * 13.0f < 1.5f);
 }
 
-TEST_CASE("bilinear back-projection is exact on a linear ramp; a failed tap's weight is renormalised away") {
+TEST_CASE("bilinear back-projection is exact on a linear ramp, a failed tap's weight is renormalised away") {
   const int w = 8, h = 6;
   const SurfacePlanes prev_s = flat_surface(w, h);
   // The history is the ramp r(p) = 0.5 + 0.25 p.x + 0.125 p.y, sampled at pixel centres.
@@ -283,7 +283,7 @@ TEST_CASE("the 3x3 fallback finds thin geometry the bilinear taps miss") {
   }
 }
 
-TEST_CASE("no surface: everything 0; sizes are checked; any thread count gives the same bits") {
+TEST_CASE("no surface: everything 0, sizes are checked, any thread count gives the same bits") {
   const int w = 7, h = 5;
   SurfacePlanes s = flat_surface(w, h);
   s.mesh.at(2, 2) = kInvalidId;

@@ -71,7 +71,7 @@ TEST_CASE("bounded by 1, also for very bright saturated colours") {
   CHECK(probe.find("scaled colour").value[2] == Approx(10.0f / 1.722f).epsilon(1e-6));
 }
 
-TEST_CASE("tonemap applies the per-pixel function to every pixel; parameters are range-checked") {
+TEST_CASE("tonemap applies the per-pixel function to every pixel, parameters are range-checked") {
   RgbPlane colour(3, 2);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) colour.at(x, y) = glm::vec3(float(x), 0.5f * float(y), float(x * y) + 0.1f);

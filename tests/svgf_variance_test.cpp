@@ -44,7 +44,7 @@ TEST_CASE("temporal estimate (n >= 4): sigma'^2 = mu2' - mu1'^2, never negative"
   }
 }
 
-TEST_CASE("n < 4 switches to the spatial estimate; no surface gives 0") {
+TEST_CASE("n < 4 switches to the spatial estimate, no surface gives 0") {
   SurfacePlanes s = flat_surface(9, 9);
   TemporalOutput t = moments(9, 9, 0.5f, 0.75f, 3.0f);
   t.moment1.at(5, 4) = 1.0f;  // a neighbour that differs: the spatial estimate sees it, the temporal one not

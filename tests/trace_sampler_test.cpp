@@ -60,7 +60,7 @@ double reference_uniform(std::mt19937& rng) { return double(rng() >> 8) * 0x1p-2
 
 }  // namespace
 
-TEST_CASE("Sampler: every value lies in [0, 1)") {
+TEST_CASE("Sampler: every value u has 0 <= u < 1") {
   // 256 seeds x 64 indices x 8 pairs = 131072 points; the smallest and largest coordinates seen.
   float smallest = 1.0f, largest = 0.0f;
   for (uint32_t seed = 0; seed < 256; ++seed) {

@@ -8,8 +8,8 @@
 // passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
 // one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
 // [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a
-// shared-memory tile measured 2x slower than the gather, and on an H100 a level takes nearly the same time at
-// step 1 as at step 16, so locality, all a tile adds, is not what limits it (docs/performance.md).
+// shared-memory tile measured 2x slower than the gather, and on an H100 2.3x slower at steps 1 and 2, where its
+// shared memory also slowed the untiled levels 3x (docs/performance.md).
 //   in:  bindings 0-1: illumination (c_i, Var(c_i)) of the direct and the indirect stream; 2: surface; 3: depth
 //        gradient;
 //   out: bindings 4-5: illumination (c_{i+1}, Var(c_{i+1})); 6: g3x3(Var(c_i)) of both streams, written only

@@ -222,7 +222,7 @@ ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_commands)
     pool_info.pPoolSizes = sizes;
     vk_check(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool_), "vkCreateDescriptorPool");
     if (context.has_timestamps()) {
-      // Two timestamps per dispatch: before and after it.
+      // Two timestamps per command: before and after it.
       VkQueryPoolCreateInfo query_info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
       query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
       query_info.queryCount = 2 * max_commands;

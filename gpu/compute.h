@@ -1,7 +1,7 @@
 // Buffers, pipelines and timed dispatches: all a port needs to run compute shaders on planes.
 //
-// A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent, device-local where the
-// device has such memory): upload() and download() are plain copies. Given a texel format it also has a buffer
+// A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent; where it lives: Memory,
+// below): upload() and download() are plain copies. Given a texel format it also has a buffer
 // view, so shaders can read it as a `samplerBuffer` / `usamplerBuffer` and texelFetch() whole texels.
 //
 // A ComputePipeline is one shader (SPIR-V compiled at build time into RTDR_SHADER_DIR, see gpu/CMakeLists.txt)
@@ -12,9 +12,9 @@
 // component at a time, while a texel fetch gathers a whole texel for all lanes at once (3x faster measured on
 // the remodulation shader, docs/performance.md). On a GPU the ports read storage buffers (core/shader_shared.h).
 //
-// A ComputeBatch records several dispatches into one command buffer, with a barrier between consecutive ones (each
-// dispatch sees the previous ones' writes), submits them once and waits; each dispatch is timed by timestamp
-// queries. ComputePipeline::dispatch is the batch of one.
+// A ComputeBatch records several dispatches, and copies into readback buffers, into one command buffer, with a
+// barrier between consecutive ones (each sees the previous ones' writes), submits them once and waits; each is
+// timed by timestamp queries. ComputePipeline::dispatch is the batch of one.
 #pragma once
 
 #include "gpu/vulkan_context.h"

@@ -1,8 +1,8 @@
 // Buffers, pipelines and timed dispatches: all a port needs to run compute shaders on planes.
 //
-// A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent; where it lives: Memory,
-// below): upload() and download() are plain copies. Given a texel format it also has a buffer
-// view, so shaders can read it as a `samplerBuffer` / `usamplerBuffer` and texelFetch() whole texels.
+// A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent; where it lives:
+// Memory, below): upload() and download() are plain copies. Given a texel format it also has a buffer view, so
+// shaders can read it as a `samplerBuffer` / `usamplerBuffer` and texelFetch() whole texels.
 //
 // A ComputePipeline is one shader (SPIR-V compiled at build time into RTDR_SHADER_DIR, see gpu/CMakeLists.txt)
 // whose set 0 holds one binding per entry of its Binding list, in order, plus one push-constant block:

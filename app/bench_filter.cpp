@@ -23,8 +23,8 @@ namespace rtdr {
 namespace {
 
 // Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..]. For the
-// Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands; each frame's batch is
-// submitted `submits` times and the last one timed (--submits).
+// Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands (left alone for other
+// methods); each frame's batch is submitted `submits` times and the last one timed (--submits).
 std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup, int submits,
                                           std::vector<std::pair<std::string, double>>* commands) {
   std::map<std::string, std::vector<double>> times;
@@ -51,8 +51,10 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
   }
   std::map<std::string, double> medians;
   for (const auto& [pass, ms] : times) medians[pass] = median(ms);
-  commands->clear();
-  for (const auto& [label, ms] : command_times) commands->emplace_back(label, median(ms));
+  if (gpu) {
+    commands->clear();
+    for (const auto& [label, ms] : command_times) commands->emplace_back(label, median(ms));
+  }
   return medians;
 }
 
@@ -73,7 +75,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
       const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
       if (m.context)
         devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
-                   (m.context->shader_inputs() == ShaderInputs::Texel ? "texel" : "storage") + "-buffer inputs)";
+                   shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs)";
       medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands);
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),

@@ -13,8 +13,8 @@ static_assert(kTemporalTexelBindings + kTemporalStorageBindings <= kStorageInput
 
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
-std::vector<Binding> bindings(ShaderInputs inputs, uint32_t texel, uint32_t storage) {
-  if (inputs == ShaderInputs::Storage) return std::vector<Binding>(texel + storage, Binding::Storage);
+std::vector<Binding> bindings(const VulkanContext& context, uint32_t texel, uint32_t storage) {
+  if (context.shader_inputs() == ShaderInputs::Storage) return std::vector<Binding>(texel + storage, Binding::Storage);
   std::vector<Binding> kinds(texel, Binding::Texel);
   kinds.insert(kinds.end(), storage, Binding::Storage);
   return kinds;
@@ -32,15 +32,12 @@ uint32_t groups_y(uint32_t height) { return group_count(height, kSvgfGroupSizeY)
 
 SvgfShaders::SvgfShaders(VulkanContext& context)
     : temporal_(context, load_port(context, "temporal"),
-                bindings(context.shader_inputs(), kTemporalTexelBindings, kTemporalStorageBindings),
-                sizeof(TemporalPush)),
-      variance_(context, load_port(context, "variance"), bindings(context.shader_inputs(), 6, 2),
-                sizeof(VariancePush)),
-      atrous_(context, load_port(context, "atrous"), bindings(context.shader_inputs(), 4, 3), sizeof(AtrousPush)),
-      modulate_(context, load_port(context, "modulate"), bindings(context.shader_inputs(), 4, 1),
-                sizeof(ModulatePush)),
-      tonemap_(context, load_port(context, "tonemap"), bindings(context.shader_inputs(), 1, 1), sizeof(TonemapPush)),
-      taa_(context, load_port(context, "taa"), bindings(context.shader_inputs(), 3, 1), sizeof(TaaPush)) {}
+                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush)),
+      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush)),
+      atrous_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush)),
+      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush)),
+      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush)),
+      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush)) {}
 
 void SvgfShaders::temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
                            Streams illumination_out, Streams moments_out, const TemporalPush& push) const {

@@ -115,9 +115,10 @@ ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDevicePropertie
   const bool storage_fits = properties.limits.maxPerStageDescriptorStorageBuffers >= kStorageInputBindings;
   const char* env = std::getenv("RTDR_VK_INPUTS");
   if (wanted == ShaderInputs::Auto && env && *env) {
-    if (std::strcmp(env, "texel") == 0) wanted = ShaderInputs::Texel;
-    else if (std::strcmp(env, "storage") == 0) wanted = ShaderInputs::Storage;
-    else throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
+    for (const ShaderInputs kind : {ShaderInputs::Texel, ShaderInputs::Storage})
+      if (std::strcmp(env, shader_inputs_name(kind)) == 0) wanted = kind;
+    if (wanted == ShaderInputs::Auto)
+      throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
   }
   if (wanted == ShaderInputs::Auto)
     return properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && storage_fits ? ShaderInputs::Storage
@@ -130,6 +131,10 @@ ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDevicePropertie
 }
 
 }  // namespace
+
+const char* shader_inputs_name(ShaderInputs inputs) {
+  return inputs == ShaderInputs::Texel ? "texel" : inputs == ShaderInputs::Storage ? "storage" : "auto";
+}
 
 void vk_check(VkResult result, const char* what) {
   if (result != VK_SUCCESS)

@@ -20,6 +20,8 @@ namespace rtdr {
 // How the ports read their input planes (core/shader_shared.h's RTDR_INPUT_*): as texel buffers, which lavapipe
 // reads fastest, or as storage buffers, which a GPU reads fastest (docs/performance.md).
 enum class ShaderInputs { Auto, Texel, Storage };
+// "auto", "texel" or "storage": the spelling of $RTDR_VK_INPUTS and of reports.
+const char* shader_inputs_name(ShaderInputs inputs);
 
 struct VulkanOptions {
   bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages

@@ -31,7 +31,7 @@ inline std::unique_ptr<VulkanContext> validated_context() {
     WARN("SKIPPED: no Vulkan device: " << reason);
     return nullptr;
   }
-  UNSCOPED_INFO("shader inputs: " << (inputs == ShaderInputs::Texel ? "texel buffers" : "storage buffers"));
+  UNSCOPED_INFO("shader inputs: " << shader_inputs_name(inputs) << " buffers");
   return std::make_unique<VulkanContext>(VulkanOptions{.validation = true, .inputs = inputs});
 }
 

@@ -21,8 +21,11 @@
 // How a port reads an input plane: RTDR_INPUT_RGBA(binding, name) declares the plane and a function name(i) that
 // returns its texel i as a vec4 (RTDR_INPUT_RG: vec4(x, y, 0, 1); RTDR_INPUT_UINT: uvec4(id, 0, 0, 1)), the same
 // in both builds of every shader (gpu/CMakeLists.txt compiles each one twice):
-//   <stem>.spv          texel buffers, read with texelFetch. On lavapipe a fetch gathers the texel for all lanes
-//                       at once, where a storage-buffer load runs lane by lane (docs/performance.md).
+//   <stem>.spv          storage texel buffers, read with imageLoad. On lavapipe an image load gathers the texel
+//                       for all lanes at once, inline, where a storage-buffer load runs lane by lane and a texelFetch
+//                       calls a sampling function, which makes the shader spill its registers around every call
+//                       (docs/performance.md). rg32f needs the shaderStorageImageExtendedFormats feature, which
+//                       VulkanContext enables.
 //   <stem>_storage.spv  (RTDR_STORAGE_INPUTS) storage buffers, read as arrays. On a GPU a 16-byte texel goes
 //                       through the texture units at a fraction of the rate of plain loads (docs/performance.md).
 // The host binds each input as the kind its shader was built for (gpu/svgf_shaders.h, ShaderInputs).
@@ -37,13 +40,15 @@
   layout(std430, set = 0, binding = b) readonly buffer name##_records { uint name##_data[]; }; \
   uvec4 name(int i) { return uvec4(name##_data[i], 0u, 0u, 1u); }
 #else
-#define RTDR_INPUT_RGBA(b, name)                                      \
-  layout(set = 0, binding = b) uniform samplerBuffer name##_texels; \
-  vec4 name(int i) { return texelFetch(name##_texels, i); }
-#define RTDR_INPUT_RG(b, name) RTDR_INPUT_RGBA(b, name)
-#define RTDR_INPUT_UINT(b, name)                                       \
-  layout(set = 0, binding = b) uniform usamplerBuffer name##_texels; \
-  uvec4 name(int i) { return texelFetch(name##_texels, i); }
+#define RTDR_INPUT_RGBA(b, name)                                                       \
+  layout(set = 0, binding = b, rgba32f) uniform readonly imageBuffer name##_texels; \
+  vec4 name(int i) { return imageLoad(name##_texels, i); }
+#define RTDR_INPUT_RG(b, name)                                                       \
+  layout(set = 0, binding = b, rg32f) uniform readonly imageBuffer name##_texels; \
+  vec4 name(int i) { return imageLoad(name##_texels, i); }
+#define RTDR_INPUT_UINT(b, name)                                                      \
+  layout(set = 0, binding = b, r32ui) uniform readonly uimageBuffer name##_texels; \
+  uvec4 name(int i) { return imageLoad(name##_texels, i); }
 #endif
 #endif
 

@@ -37,13 +37,13 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
   pack_surface(s, *surface);
   pack_vec2(s.depth_grad, *grad);
 
-  const AtrousPush push{uint32_t(w),    uint32_t(h),    level,          params.kernel_size, params.sigma_z,
-                        params.sigma_n, params.sigma_l, params.epsilon, 1u};
+  const AtrousPush push{uint32_t(w),    uint32_t(h),    level, params.sigma_z, params.sigma_n,
+                        params.sigma_l, params.epsilon, 1u};
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
         shaders.atrous(batch, {in.get(), in.get()}, {surface.get(), grad.get(), nullptr, nullptr},
-                       {out_direct.get(), out_indirect.get()}, *prefiltered, push);
+                       {out_direct.get(), out_indirect.get()}, *prefiltered, push, params.kernel_size);
       },
       ms);
 

@@ -57,7 +57,7 @@ GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format, 
   try {
     VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = floats * sizeof(float);
-    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     vk_check(vkCreateBuffer(device_, &info, nullptr, &buffer_), "vkCreateBuffer");
@@ -129,13 +129,14 @@ std::vector<uint32_t> load_shader(const std::string& stem) {
 namespace {
 
 VkDescriptorType descriptor_type(Binding binding) {
-  return binding == Binding::Texel ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return binding == Binding::Texel ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 }  // namespace
 
 ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv,
-                                 std::vector<Binding> bindings, uint32_t push_bytes)
+                                 std::vector<Binding> bindings, uint32_t push_bytes,
+                                 const std::vector<int32_t>& specialization)
     : context_(context), bindings_(std::move(bindings)), push_bytes_(push_bytes) {
   VkDevice device = context.device();
   try {
@@ -161,11 +162,18 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const std::vector<uint3
     layout_info.pPushConstantRanges = &push_range;
     vk_check(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout_), "vkCreatePipelineLayout");
 
+    // Specialization constant i (constant_id = i) takes specialization[i], a 32-bit int.
+    std::vector<VkSpecializationMapEntry> entries(specialization.size());
+    for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)};
+    const VkSpecializationInfo constants{uint32_t(entries.size()), entries.data(),
+                                         specialization.size() * sizeof(int32_t), specialization.data()};
+
     VkComputePipelineCreateInfo pipeline_info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     pipeline_info.stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipeline_info.stage.module = module_;
     pipeline_info.stage.pName = "main";
+    pipeline_info.stage.pSpecializationInfo = specialization.empty() ? nullptr : &constants;
     pipeline_info.layout = layout_;
     vk_check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline_),
              "vkCreateComputePipelines");
@@ -214,7 +222,7 @@ ComputeBatch::ComputeBatch(VulkanContext& context, uint32_t max_commands)
   try {
     // One descriptor set per dispatch, all freed at once when the next batch begins.
     const VkDescriptorPoolSize sizes[2] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kMaxBindingsPerKind * max_commands},
+        {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, kMaxBindingsPerKind * max_commands},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxBindingsPerKind * max_commands}};
     VkDescriptorPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = max_commands;

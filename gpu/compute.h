@@ -2,15 +2,18 @@
 //
 // A GpuBuffer is a storage buffer mapped for its whole life (host-visible and host-coherent; where it lives:
 // Memory, below): upload() and download() are plain copies. Given a texel format it also has a buffer view, so
-// shaders can read it as a `samplerBuffer` / `usamplerBuffer` and texelFetch() whole texels.
+// shaders can read it as an `imageBuffer` / `uimageBuffer` and imageLoad() whole texels.
 //
 // A ComputePipeline is one shader (SPIR-V compiled at build time into RTDR_SHADER_DIR, see gpu/CMakeLists.txt)
 // whose set 0 holds one binding per entry of its Binding list, in order, plus one push-constant block:
-//   Binding::Texel    a uniform texel buffer, read with texelFetch (the buffer needs a texel format);
+//   Binding::Texel    a storage texel buffer, read with imageLoad (the buffer needs a texel format);
 //   Binding::Storage  a storage buffer, read or written as an std430 array.
 // Why texel buffers for inputs on lavapipe: a storage-buffer load runs one lane at a time and one 32-bit
-// component at a time, while a texel fetch gathers a whole texel for all lanes at once (3x faster measured on
-// the remodulation shader, docs/performance.md). On a GPU the ports read storage buffers (core/shader_shared.h).
+// component at a time, while an image load gathers a whole texel for all lanes at once (3x faster measured on
+// the remodulation shader). Storage texel buffers rather than uniform ones (texelFetch): lavapipe compiles a
+// texelFetch of a float format into a call, and the shader spills its registers around each call; an unrolled
+// a-trous level runs 10% fewer instructions with image loads, and 1.2x faster (docs/performance.md). On a GPU the
+// ports read storage buffers (core/shader_shared.h).
 //
 // A ComputeBatch records several dispatches, and copies into readback buffers, into one command buffer, with a
 // barrier between consecutive ones (each sees the previous ones' writes), submits them once and waits; each is
@@ -78,8 +81,9 @@ enum class Binding { Texel, Storage };
 
 class ComputePipeline {
  public:
+  // `specialization`: the values of the shader's int specialization constants, constant_id i = entry i.
   ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv, std::vector<Binding> bindings,
-                  uint32_t push_bytes);
+                  uint32_t push_bytes, const std::vector<int32_t>& specialization = {});
   // A shader whose `buffer_count` bindings are all storage buffers.
   ComputePipeline(VulkanContext& context, const std::vector<uint32_t>& spirv, uint32_t buffer_count,
                   uint32_t push_bytes);

@@ -1,6 +1,8 @@
 // The SVGF ports' pipelines and their dispatches. See svgf_shaders.h.
 #include "gpu/svgf_shaders.h"
 
+#include "core/error.h"
+
 #include <string>
 #include <vector>
 
@@ -10,6 +12,8 @@ namespace {
 
 static_assert(kTemporalTexelBindings + kTemporalStorageBindings <= kStorageInputBindings,
               "VulkanContext picks storage inputs only where the device allows every port's bindings");
+static_assert(kTemporalTexelBindings <= kTexelInputBindings,
+              "VulkanContext picks texel inputs only where the device allows every port's texel bindings");
 
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
@@ -34,7 +38,8 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
     : temporal_(context, load_port(context, "temporal"),
                 bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush)),
       variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush)),
-      atrous_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush)),
+      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush), {5}),
+      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush), {3}),
       modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush)),
       tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush)),
       taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush)) {}
@@ -57,8 +62,11 @@ void SvgfShaders::variance(ComputeBatch& batch, Streams illumination, Streams mo
 }
 
 void SvgfShaders::atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out,
-                         const GpuBuffer& prefiltered, const AtrousPush& push) const {
-  batch.dispatch(atrous_, {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered},
+                         const GpuBuffer& prefiltered, const AtrousPush& push, int kernel_size) const {
+  static_assert(kAtrousKernelSizeConstant == 0, "the pipelines' specialization lists the kernel size first");
+  if (kernel_size != 5 && kernel_size != 3)
+    throw Error("SvgfShaders::atrous: kernel_size must be 5 or 3, got " + std::to_string(kernel_size));
+  batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_, {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered},
                  &push, groups_x(push.width), groups_y(push.height), "atrous");
 }
 

@@ -53,9 +53,11 @@ class SvgfShaders {
   // [SVGF17 Sec. 4.2]: illumination C' and moments -> illumination (C', sigma'^2).
   void variance(ComputeBatch& batch, Streams illumination, Streams moments, const GBufferPlanes& g, Streams out,
                 const VariancePush& push) const;
-  // [SVGF17 Sec. 4.3, 4.4, Eq. 1-5]: one a-trous level; `prefiltered` receives g3x3(Var) when push.keep_prefiltered.
+  // [SVGF17 Sec. 4.3, 4.4, Eq. 1-5]: one a-trous level with the kernel_size x kernel_size kernel (5 or 3: one
+  // pipeline each, atrous.comp's specialization constant); `prefiltered` receives g3x3(Var) when
+  // push.keep_prefiltered. Throws rtdr::Error for another kernel_size.
   void atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out, const GpuBuffer& prefiltered,
-              const AtrousPush& push) const;
+              const AtrousPush& push, int kernel_size) const;
   // [SVGF17 Sec. 3]: colour = emission + albedo (direct + indirect).
   void modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
                 const GpuBuffer& colour, const ModulatePush& push) const;
@@ -64,7 +66,7 @@ class SvgfShaders {
            const GpuBuffer& out, const TaaPush& push) const;
 
  private:
-  ComputePipeline temporal_, variance_, atrous_, modulate_, tonemap_, taa_;
+  ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_;
 };
 
 template <class Record>

@@ -118,7 +118,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
     const Streams out =
         level == p.history_level ? Buffers::streams(b.history[cur]) : Buffers::streams(b.level[level & 1]);
     shaders_.atrous(batch_, filtered, g, out, *b.prefiltered,
-                    AtrousPush{uw, uh, level, p.kernel_size, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u});
+                    AtrousPush{uw, uh, level, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u}, p.kernel_size);
     filtered = out;
   }
   shaders_.modulate(batch_, filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});

@@ -110,9 +110,12 @@ VkPhysicalDevice choose_device(VkInstance instance) {
   return nvidia ? nvidia : first;
 }
 
-// VulkanOptions::inputs resolved for a device with `properties`.
-ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDeviceProperties& properties) {
+// VulkanOptions::inputs resolved for a device with `properties` and `features`.
+ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDeviceProperties& properties,
+                            const VkPhysicalDeviceFeatures& features) {
   const bool storage_fits = properties.limits.maxPerStageDescriptorStorageBuffers >= kStorageInputBindings;
+  const bool texel_fits = properties.limits.maxPerStageDescriptorStorageImages >= kTexelInputBindings &&
+                          features.shaderStorageImageExtendedFormats;
   const char* env = std::getenv("RTDR_VK_INPUTS");
   if (wanted == ShaderInputs::Auto && env && *env) {
     for (const ShaderInputs kind : {ShaderInputs::Texel, ShaderInputs::Storage})
@@ -121,12 +124,19 @@ ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDevicePropertie
       throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
   }
   if (wanted == ShaderInputs::Auto)
-    return properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && storage_fits ? ShaderInputs::Storage
-                                                                                 : ShaderInputs::Texel;
+    wanted = storage_fits && (properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU || !texel_fits)
+                 ? ShaderInputs::Storage
+                 : ShaderInputs::Texel;
   if (wanted == ShaderInputs::Storage && !storage_fits)
     throw Error(std::string("Vulkan: ") + properties.deviceName + " allows " +
                 std::to_string(properties.limits.maxPerStageDescriptorStorageBuffers) +
                 " storage buffers per stage; storage inputs need " + std::to_string(kStorageInputBindings));
+  if (wanted == ShaderInputs::Texel && !texel_fits)
+    throw Error(std::string("Vulkan: ") + properties.deviceName + " allows " +
+                std::to_string(properties.limits.maxPerStageDescriptorStorageImages) +
+                " storage texel buffers per stage" +
+                (features.shaderStorageImageExtendedFormats ? "" : " and lacks shaderStorageImageExtendedFormats") +
+                "; texel inputs need " + std::to_string(kTexelInputBindings) + " and that feature");
   return wanted;
 }
 
@@ -172,7 +182,9 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(physical_device_, &properties);
     device_name_ = properties.deviceName;
-    inputs_ = resolve_inputs(options.inputs, properties);
+    VkPhysicalDeviceFeatures features;
+    vkGetPhysicalDeviceFeatures(physical_device_, &features);
+    inputs_ = resolve_inputs(options.inputs, properties, features);
     timestamp_period_ns_ = properties.limits.timestampPeriod;
     const uint32_t family = uint32_t(compute_queue_family(physical_device_, &timestamp_valid_bits_));
 
@@ -181,9 +193,13 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     queue_info.queueFamilyIndex = family;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
+    // Texel inputs read rg32f storage texels (core/shader_shared.h), which need this feature.
+    VkPhysicalDeviceFeatures enabled{};
+    enabled.shaderStorageImageExtendedFormats = inputs_ == ShaderInputs::Texel;
     VkDeviceCreateInfo device_info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
+    device_info.pEnabledFeatures = &enabled;
     vk_check(vkCreateDevice(physical_device_, &device_info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, family, 0, &queue_);
 

@@ -27,11 +27,16 @@ struct VulkanOptions {
   bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages
   // Auto: $RTDR_VK_INPUTS (texel or storage) when set; else texel on a CPU device (lavapipe), storage on a GPU
   // that allows kStorageInputBindings storage buffers per shader stage (the Vulkan minimum is 4), else texel.
+  // Texel inputs need kTexelInputBindings storage texel buffers per stage and the
+  // shaderStorageImageExtendedFormats feature (for rg32f texels); the context throws when the kind asked for does
+  // not fit the device.
   ShaderInputs inputs = ShaderInputs::Auto;
 };
 
 // The most storage buffers a port binds with storage inputs: the temporal pass's 16 planes (temporal_shared.h).
 inline constexpr uint32_t kStorageInputBindings = 16;
+// The most storage texel buffers a port binds with texel inputs: the temporal pass's 12 input planes.
+inline constexpr uint32_t kTexelInputBindings = 12;
 
 // What the validation layer said: warnings and errors only (info and verbose are not kept).
 struct ValidationLog {

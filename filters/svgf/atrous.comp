@@ -9,13 +9,15 @@
 // one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
 // [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a
 // shared-memory tile measured 2x slower than the gather, and on an H100 2.3x slower at steps 1 and 2, where its
-// shared memory also slowed the untiled levels 3x (docs/performance.md).
+// shared memory also slowed the untiled levels 3x (docs/performance.md). The kernel size is a specialization
+// constant, so the compiler knows the taps and unrolls their loops (half the instructions on lavapipe).
 //   in:  bindings 0-1: illumination (c_i, Var(c_i)) of the direct and the indirect stream; 2: surface; 3: depth
 //        gradient;
 //   out: bindings 4-5: illumination (c_{i+1}, Var(c_{i+1})); 6: g3x3(Var(c_i)) of both streams, written only
 //        when p.keep_prefiltered is set. Layout: planes_shared.h and atrous_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "filters/svgf/atrous_shared.h"
 
@@ -29,7 +31,15 @@ layout(std430, set = 0, binding = 4) writeonly buffer DirectOut { vec4 direct_ou
 layout(std430, set = 0, binding = 5) writeonly buffer IndirectOut { vec4 indirect_out[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
 
-layout(push_constant) uniform Push { AtrousPush p; };
+layout(push_constant) uniform Push { AtrousPush push; };
+
+// GPU only: the push constants, copied once at the top of main(). lavapipe loads a push constant lane by lane at
+// each use; the copy is loaded once.
+AtrousPush p;
+
+// The kernel size, 5 or 3 (SvgfParams::kernel_size), fixed when the host creates the pipeline (a specialization
+// constant): the compiler knows the taps and unrolls the loops over them. 5 is only the unspecialized value.
+layout(constant_id = kAtrousKernelSizeConstant) const int kernel_size = 5;
 
 // Plane accessors (filters/image.h's at, inside): pixel (x, y) at y * width + x.
 int index_of(int x, int y) { return y * int(p.width) + x; }
@@ -67,8 +77,8 @@ const float kGaussian3[3] = float[3](kPrefilterEdge, kPrefilterCentre, kPrefilte
 // (at_clamped) [SVGF17 Sec. 4.4].
 vec2 prefilter_variance_pixel(int x, int y) {
   precise vec2 sum = vec2(0.0f);
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
+  [[unroll]] for (int dy = -1; dy <= 1; ++dy)
+    [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
       // The binomial weight of this tap, g(dx) g(dy): 1/4 at the centre, 1/8 at the edges, 1/16 at the corners.
       const float g = kGaussian3[dx + 1] * kGaussian3[dy + 1];
       // The neighbour's variance, the border pixel where (x + dx, y + dy) falls outside.
@@ -135,9 +145,9 @@ vec2 tap_weight(Centre c, int qx, int qy, vec4 s_q, Illumination c_q) {
 
 // h(k), the 1D kernel weight of tap k (atrous_kernel): the B3 spline (1/16, 1/4, 3/8, 1/4, 1/16) for
 // kernel_size 5, the box (1/3, 1/3, 1/3) for 3. GPU only: selects, not a table, which lavapipe would keep in
-// per-invocation memory.
+// per-invocation memory; with the taps unrolled they fold to constants.
 float kernel_weight(int k) {
-  if (p.kernel_size != 5) return kAtrousBox;
+  if (kernel_size != 5) return kAtrousBox;
   return k == 0 ? kAtrousB3Centre : (abs(k) == 1 ? kAtrousB3Inner : kAtrousB3Outer);
 }
 
@@ -146,6 +156,7 @@ float centre_weight() { return 1.0f; }
 
 void main() {
   // This invocation's pixel; the last tiles overhang the frame.
+  p = push;
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= int(p.width) || y >= int(p.height)) return;
   const int i = index_of(x, y);
@@ -160,7 +171,7 @@ void main() {
     return;
   }
   // atrous_kernel (atrous.cpp): the host has checked kernel_size is 5 or 3; the weights are atrous_shared.h's.
-  const int radius = p.kernel_size == 5 ? 2 : 1;
+  const int radius = kernel_size == 5 ? 2 : 1;
   const int step = 1 << p.level;  // 2^i: the taps' spacing at level i
   const Centre centre = read_centre(x, y, s_p, c_p);
 
@@ -170,8 +181,8 @@ void main() {
   precise vec2 sum_hw = vec2(0.0f);
   precise vec3 sum_hwc[2] = vec3[2](vec3(0.0f), vec3(0.0f));
   precise vec2 sum_h2w2_var = vec2(0.0f);
-  for (int j = -radius; j <= radius; ++j)
-    for (int k = -radius; k <= radius; ++k) {
+  [[unroll]] for (int j = -radius; j <= radius; ++j)
+    [[unroll]] for (int k = -radius; k <= radius; ++k) {
       const int qx = x + k * step, qy = y + j * step;  // the tap q, 2^i (k, j) away from p
       // Off the image: skipped; sum h w renormalises over the taps that remain.
       if (!inside(qx, qy)) continue;

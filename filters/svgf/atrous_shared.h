@@ -41,14 +41,17 @@ RTDR_SHARED_CONST float kAtrousBox = 1.0f / 3.0f;       // h(-1) = h(0) = h(1)
 RTDR_SHARED_CONST float kPrefilterEdge = 0.25f;   // g(+-1)
 RTDR_SHARED_CONST float kPrefilterCentre = 0.5f;  // g(0)
 
-// The push-constant block, for both shaders: the frame size (invocations outside it do nothing), the level i
-// (taps 2^i apart), the kernel size (5 or 3), the edge-stopping parameters of SvgfParams, and whether to write
-// the prefiltered variance (for dumps and tests; the pipeline needs it only inside the shader).
+// The specialization constant that fixes the kernel size, 5 or 3, when the host creates the pipeline
+// (atrous.comp's kernel_size, SvgfShaders).
+RTDR_SHARED_CONST int kAtrousKernelSizeConstant = 0;
+
+// The push-constant block: the frame size (invocations outside it do nothing), the level i (taps 2^i apart), the
+// edge-stopping parameters of SvgfParams, and whether to write the prefiltered variance (for dumps and tests; the
+// pipeline needs it only inside the shader).
 struct AtrousPush {
   RTDR_SHARED_UINT width;
   RTDR_SHARED_UINT height;
   int level;
-  int kernel_size;
   float sigma_z;
   float sigma_n;
   float sigma_l;

@@ -9,6 +9,7 @@
 //   Layout: planes_shared.h and temporal_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "filters/svgf/temporal_shared.h"
 
@@ -31,7 +32,11 @@ layout(std430, set = 0, binding = 13) writeonly buffer OutIndirect { vec4 out_in
 layout(std430, set = 0, binding = 14) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
 layout(std430, set = 0, binding = 15) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
 
-layout(push_constant) uniform Push { TemporalPush frame; };
+layout(push_constant) uniform Push { TemporalPush push; };
+
+// GPU only: the push constants, copied once at the top of main(). lavapipe loads a push constant lane by lane at
+// each use; the copy is loaded once.
+TemporalPush frame;
 
 // The planes' accessors (Plane::at, inside): element y * width + x of the current or the previous frame.
 int cur_index(int x, int y) { return y * int(frame.width) + x; }
@@ -126,7 +131,7 @@ bool resample_bilinear(Centre c, vec2 p_prev, out Histories result) {
   precise vec2 f = s - floor(s);
   precise float sum_good = 0.0;
   Histories h = kNoHistories;
-  for (int k = 0; k < 4; ++k) {
+  [[unroll]] for (int k = 0; k < 4; ++k) {
     const ivec2 d = ivec2(k & 1, k >> 1);  // (0, 0), (1, 0), (0, 1), (1, 1)
     // Bilinear weight: (1 - f) towards the near centre, f towards the far one, on each axis.
     precise float w = (d.x != 0 ? f.x : 1.0 - f.x) * (d.y != 0 ? f.y : 1.0 - f.y);
@@ -226,6 +231,7 @@ void write(int i, TemporalPixel direct, TemporalPixel indirect) {
 }
 
 void main() {
+  frame = push;
   // This invocation's pixel; the last tiles overhang the frame.
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;

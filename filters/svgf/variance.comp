@@ -22,7 +22,11 @@ RTDR_INPUT_RG(5, depth_grad)
 layout(std430, set = 0, binding = 6) writeonly buffer DirectOut { vec4 direct_out[]; };
 layout(std430, set = 0, binding = 7) writeonly buffer IndirectOut { vec4 indirect_out[]; };
 
-layout(push_constant) uniform Push { VariancePush frame; };
+layout(push_constant) uniform Push { VariancePush push; };
+
+// GPU only: the push constants, copied once at the top of main(). lavapipe loads a push constant lane by lane at
+// each use; the copy is loaded once.
+VariancePush frame;
 
 // The planes' accessors (Plane::at, inside): element y * width + x.
 int index_of(int x, int y) { return y * int(frame.width) + x; }
@@ -118,6 +122,7 @@ vec2 variance_pixel(int x, int y, vec4 s_p) {
 }
 
 void main() {
+  frame = push;
   // This invocation's pixel; the last tiles overhang the frame.
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;

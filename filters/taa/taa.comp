@@ -8,6 +8,7 @@
 // after each operation in the same order.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "filters/taa/taa_shared.h"
 
@@ -18,7 +19,11 @@ RTDR_INPUT_RGBA(1, history_in)
 RTDR_INPUT_RG(2, motion_in)
 layout(std430, set = 0, binding = 3) writeonly buffer Output { vec4 output_out[]; };
 
-layout(push_constant) uniform Push { TaaPush frame; };
+layout(push_constant) uniform Push { TaaPush push; };
+
+// GPU only: the push constants, copied once at the top of main(). lavapipe loads a push constant lane by lane at
+// each use; the copy is loaded once.
+TaaPush frame;
 
 // filters/image.h's at_clamped: the pixel at (x, y) with x, y clamped into the image.
 int index_clamped(int x, int y) { return clamp(y, 0, int(frame.height) - 1) * int(frame.width) + clamp(x, 0, int(frame.width) - 1); }
@@ -70,7 +75,7 @@ vec3 clip_towards_mean(vec3 history, vec3 mean, vec3 box_min, vec3 box_max) {
   // Walk from the mean towards the history: mean + t (history - mean), t in [0, 1]. Each face the history is
   // beyond stops the walk where the segment crosses it; the first crossing (smallest t) is on the box.
   float t = 1.0;
-  for (int i = 0; i < 3; ++i) {
+  [[unroll]] for (int i = 0; i < 3; ++i) {
     precise float d = history[i] - mean[i];
     precise float face_max = box_max[i] + kTaaClipPadding;  // at least e beyond the mean: d >= e where it clips
     precise float face_min = box_min[i] - kTaaClipPadding;
@@ -101,8 +106,8 @@ vec3 taa_pixel(int x, int y) {
   const float inf = uintBitsToFloat(0x7f800000u);
   vec3 box_min = vec3(inf), box_max = vec3(-inf);
   precise vec3 sum = vec3(0.0);
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
+  [[unroll]] for (int dy = -1; dy <= 1; ++dy) {
+    [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
       const vec3 s = rgb_to_ycocg(current_at_clamped(x + dx, y + dy));  // the image edge repeats
       box_min = min(box_min, s);
       box_max = max(box_max, s);
@@ -126,6 +131,7 @@ vec3 taa_pixel(int x, int y) {
 }
 
 void main() {
+  frame = push;
   // This invocation's pixel; the last tiles overhang the frame.
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;

@@ -29,20 +29,45 @@ std::vector<uint32_t> load_port(const VulkanContext& context, const std::string&
   return load_shader(context.shader_inputs() == ShaderInputs::Storage ? stem + "_storage" : stem);
 }
 
-uint32_t groups_x(uint32_t width) { return group_count(width, kSvgfGroupSizeX); }
-uint32_t groups_y(uint32_t height) { return group_count(height, kSvgfGroupSizeY); }
+// The workgroup shape of the SVGF ports on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
+uint32_t group_width(const VulkanContext& context) {
+  return context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX;
+}
+uint32_t group_height(const VulkanContext& context) {
+  return context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY;
+}
+
+// The specialization constants every SVGF port takes, then `more` (the a-trous kernel size).
+std::vector<int32_t> specialization(const VulkanContext& context, std::vector<int32_t> more = {}) {
+  static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
+                "the specialization lists constant_id 0, 1, 2, ... in order");
+  std::vector<int32_t> constants = {int32_t(group_width(context)), int32_t(group_height(context))};
+  constants.insert(constants.end(), more.begin(), more.end());
+  return constants;
+}
 
 }  // namespace
 
 SvgfShaders::SvgfShaders(VulkanContext& context)
-    : temporal_(context, load_port(context, "temporal"),
-                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush)),
-      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush)),
-      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush), {5}),
-      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush), {3}),
-      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush)),
-      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush)),
+    : group_width_(group_width(context)),
+      group_height_(group_height(context)),
+      temporal_(context, load_port(context, "temporal"),
+                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
+                specialization(context)),
+      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush),
+                specialization(context)),
+      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+                  specialization(context, {5})),
+      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+                  specialization(context, {3})),
+      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush),
+                specialization(context)),
+      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
+               specialization(context)),
       taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush)) {}
+
+uint32_t SvgfShaders::groups_x(uint32_t width) const { return group_count(width, group_width_); }
+uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(height, group_height_); }
 
 void SvgfShaders::temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
                            Streams illumination_out, Streams moments_out, const TemporalPush& push) const {
@@ -63,11 +88,11 @@ void SvgfShaders::variance(ComputeBatch& batch, Streams illumination, Streams mo
 
 void SvgfShaders::atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out,
                          const GpuBuffer& prefiltered, const AtrousPush& push, int kernel_size) const {
-  static_assert(kAtrousKernelSizeConstant == 0, "the pipelines' specialization lists the kernel size first");
   if (kernel_size != 5 && kernel_size != 3)
     throw Error("SvgfShaders::atrous: kernel_size must be 5 or 3, got " + std::to_string(kernel_size));
-  batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_, {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered},
-                 &push, groups_x(push.width), groups_y(push.height), "atrous");
+  batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_,
+                 {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered}, &push,
+                 groups_x(push.width), groups_y(push.height), "atrous");
 }
 
 void SvgfShaders::modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,

@@ -66,6 +66,11 @@ class SvgfShaders {
            const GpuBuffer& out, const TaaPush& push) const;
 
  private:
+  // Workgroups covering a frame `width` (`height`) pixels wide (high).
+  uint32_t groups_x(uint32_t width) const;
+  uint32_t groups_y(uint32_t height) const;
+
+  uint32_t group_width_, group_height_;  // the SVGF ports' workgroup shape on this device (planes_shared.h)
   ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_;
 };
 

@@ -182,6 +182,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(physical_device_, &properties);
     device_name_ = properties.deviceName;
+    cpu_device_ = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     VkPhysicalDeviceFeatures features;
     vkGetPhysicalDeviceFeatures(physical_device_, &features);
     inputs_ = resolve_inputs(options.inputs, properties, features);

@@ -60,6 +60,7 @@ class VulkanContext {
   VkQueue queue() const { return queue_; }
   VkCommandPool command_pool() const { return command_pool_; }
   const std::string& device_name() const { return device_name_; }
+  bool cpu_device() const { return cpu_device_; }  // a CPU implementation such as lavapipe, not a GPU
   ShaderInputs shader_inputs() const { return inputs_; }  // Texel or Storage, never Auto
 
   // Timestamp queries: supported when the compute queue has valid bits; a tick lasts timestamp_period_ns.
@@ -87,6 +88,7 @@ class VulkanContext {
   VkQueue queue_ = VK_NULL_HANDLE;
   VkCommandPool command_pool_ = VK_NULL_HANDLE;
   std::string device_name_;
+  bool cpu_device_ = false;
   ShaderInputs inputs_ = ShaderInputs::Texel;
   uint32_t timestamp_valid_bits_ = 0;
   float timestamp_period_ns_ = 0.0f;

@@ -43,7 +43,7 @@ RTDR_SHARED_CONST float kPrefilterCentre = 0.5f;  // g(0)
 
 // The specialization constant that fixes the kernel size, 5 or 3, when the host creates the pipeline
 // (atrous.comp's kernel_size, SvgfShaders).
-RTDR_SHARED_CONST int kAtrousKernelSizeConstant = 0;
+RTDR_SHARED_CONST int kAtrousKernelSizeConstant = 2;  // 0 and 1: the workgroup shape (planes_shared.h)
 
 // The push-constant block: the frame size (invocations outside it do nothing), the level i (taps 2^i apart), the
 // edge-stopping parameters of SvgfParams, and whether to write the prefiltered variance (for dumps and tests; the

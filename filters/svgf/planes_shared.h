@@ -28,12 +28,19 @@ namespace rtdr {
 // The depth a surface record holds where the pixel has no surface.
 RTDR_SHARED_CONST float kNoSurfaceDepth = -1.0f;
 
-// Every SVGF port runs one invocation per pixel in 32x2 tiles: 64 invocations, a multiple of every vendor's
-// subgroup size. Wide rather than square for lavapipe, which runs a workgroup 8 invocations along x at a time:
-// a row of 32 reads 512 contiguous bytes per 16-byte plane. At the a-trous step 16, 8x8 tiles took 1.4x as long
-// as 32x2 (docs/performance.md).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeX = 32;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeY = 2;
+// Every SVGF port runs one invocation per pixel in workgroups of 64 invocations, a multiple of every vendor's
+// subgroup size, whose shape the host fixes per device when it creates the pipelines (specialization constants
+// kSvgfGroupSizeXConstant and kSvgfGroupSizeYConstant, SvgfShaders):
+//   GPU:                 8x8 tiles, the shape measured on the H100 (docs/performance.md); the shaders' default.
+//   CPU device (lavapipe): 32x2 rows. lavapipe runs a workgroup 8 invocations along x at a time, and a row of 32
+//                        reads 512 contiguous bytes of a 16-byte plane: at the a-trous step 16, 8x8 tiles took
+//                        1.4x as long there.
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeX = 8;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfGroupSizeY = 8;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfCpuGroupSizeX = 32;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kSvgfCpuGroupSizeY = 2;
+RTDR_SHARED_CONST int kSvgfGroupSizeXConstant = 0;
+RTDR_SHARED_CONST int kSvgfGroupSizeYConstant = 1;
 
 #ifdef __cplusplus
 }  // namespace rtdr

@@ -13,7 +13,9 @@
 
 #include "filters/svgf/temporal_shared.h"
 
-layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
+// The workgroup's shape, per device (planes_shared.h).
+layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
+       local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
 RTDR_INPUT_RGBA(0, noisy_direct)
 RTDR_INPUT_RGBA(1, noisy_indirect)

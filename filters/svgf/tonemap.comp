@@ -7,7 +7,9 @@
 
 #include "filters/svgf/tonemap_shared.h"
 
-layout(local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
+// The workgroup's shape, per device (planes_shared.h).
+layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
+       local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
 RTDR_INPUT_RGBA(0, colour_in)
 layout(std430, set = 0, binding = 1) writeonly buffer Display { vec4 display_out[]; };

@@ -41,6 +41,8 @@ uint32_t group_height(const VulkanContext& context) {
 std::vector<int32_t> specialization(const VulkanContext& context, std::vector<int32_t> more = {}) {
   static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
                 "the specialization lists constant_id 0, 1, 2, ... in order");
+  static_assert(kTaaGroupSizeXConstant == kSvgfGroupSizeXConstant && kTaaGroupSizeYConstant == kSvgfGroupSizeYConstant,
+                "the TAA port takes the SVGF ports' workgroup shape");
   std::vector<int32_t> constants = {int32_t(group_width(context)), int32_t(group_height(context))};
   constants.insert(constants.end(), more.begin(), more.end());
   return constants;
@@ -64,7 +66,7 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
                 specialization(context)),
       tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
                specialization(context)),
-      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush)) {}
+      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization(context)) {}
 
 uint32_t SvgfShaders::groups_x(uint32_t width) const { return group_count(width, group_width_); }
 uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(height, group_height_); }
@@ -108,8 +110,8 @@ void SvgfShaders::tonemap(ComputeBatch& batch, const GpuBuffer& colour, const Gp
 
 void SvgfShaders::taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,
                       const GpuBuffer& out, const TaaPush& push) const {
-  batch.dispatch(taa_, {&current, &history, &motion, &out}, &push, group_count(push.width, kTaaGroupSizeX),
-                 group_count(push.height, kTaaGroupSizeY), "taa");
+  batch.dispatch(taa_, {&current, &history, &motion, &out}, &push, groups_x(push.width), groups_y(push.height),
+                 "taa");
 }
 
 }  // namespace rtdr

@@ -12,7 +12,9 @@
 
 #include "filters/taa/taa_shared.h"
 
-layout(local_size_x = kTaaGroupSizeX, local_size_y = kTaaGroupSizeY) in;
+// The workgroup's shape, fixed by the host per device (taa_shared.h).
+layout(local_size_x_id = kTaaGroupSizeXConstant, local_size_y_id = kTaaGroupSizeYConstant,
+       local_size_x = kTaaGroupSizeX, local_size_y = kTaaGroupSizeY) in;
 
 RTDR_INPUT_RGBA(0, current_in)
 RTDR_INPUT_RGBA(1, history_in)

@@ -15,9 +15,14 @@
 namespace rtdr {
 #endif
 
-// One invocation per pixel in 8x8 tiles: 64 invocations, a multiple of every vendor's subgroup size.
+// One invocation per pixel in workgroups of 64 invocations, a multiple of every vendor's subgroup size: 8x8 tiles
+// unless the host specializes the shape (constant_id kTaaGroupSizeXConstant and kTaaGroupSizeYConstant), as
+// SvgfShaders does per device, giving the TAA port the SVGF ports' shape (filters/svgf/planes_shared.h: 32x2 rows
+// on lavapipe).
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeX = 8;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTaaGroupSizeY = 8;
+RTDR_SHARED_CONST int kTaaGroupSizeXConstant = 0;
+RTDR_SHARED_CONST int kTaaGroupSizeYConstant = 1;
 
 // The history clip's padding e: clip_towards_mean (taa.cpp, taa.comp) clips onto the box [box_min - e, box_max + e]
 // per YCoCg channel, not onto the bare 3x3 box of Karis14. Why: where the box is flat in a channel (box_min =

@@ -157,8 +157,8 @@ float kernel_weight(int k) {
 float centre_weight() { return 1.0f; }
 
 void main() {
+  p = push;  // the push constants, read once (see above)
   // This invocation's pixel; the last tiles overhang the frame.
-  p = push;
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= int(p.width) || y >= int(p.height)) return;
   const int i = index_of(x, y);

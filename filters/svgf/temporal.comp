@@ -233,7 +233,7 @@ void write(int i, TemporalPixel direct, TemporalPixel indirect) {
 }
 
 void main() {
-  frame = push;
+  frame = push;  // the push constants, read once (see above)
   // This invocation's pixel; the last tiles overhang the frame.
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;

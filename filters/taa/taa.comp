@@ -133,7 +133,7 @@ vec3 taa_pixel(int x, int y) {
 }
 
 void main() {
-  frame = push;
+  frame = push;  // the push constants, read once (see above)
   // This invocation's pixel; the last tiles overhang the frame.
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;

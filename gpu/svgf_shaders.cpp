@@ -29,44 +29,35 @@ std::vector<uint32_t> load_port(const VulkanContext& context, const std::string&
   return load_shader(context.shader_inputs() == ShaderInputs::Storage ? stem + "_storage" : stem);
 }
 
-// The workgroup shape of the SVGF ports on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
-uint32_t group_width(const VulkanContext& context) {
-  return context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX;
-}
-uint32_t group_height(const VulkanContext& context) {
-  return context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY;
-}
+}  // namespace
 
-// The specialization constants every SVGF port takes, then `more` (the a-trous kernel size).
-std::vector<int32_t> specialization(const VulkanContext& context, std::vector<int32_t> more = {}) {
+SvgfShaders::SvgfShaders(VulkanContext& context)
+    : group_width_(context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX),
+      group_height_(context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY),
+      temporal_(context, load_port(context, "temporal"),
+                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
+                specialization()),
+      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush),
+                specialization()),
+      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+                  specialization({5})),
+      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+                  specialization({3})),
+      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush),
+                specialization()),
+      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
+               specialization()),
+      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization()) {}
+
+std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& more) const {
   static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
                 "the specialization lists constant_id 0, 1, 2, ... in order");
   static_assert(kTaaGroupSizeXConstant == kSvgfGroupSizeXConstant && kTaaGroupSizeYConstant == kSvgfGroupSizeYConstant,
                 "the TAA port takes the SVGF ports' workgroup shape");
-  std::vector<int32_t> constants = {int32_t(group_width(context)), int32_t(group_height(context))};
+  std::vector<int32_t> constants = {int32_t(group_width_), int32_t(group_height_)};
   constants.insert(constants.end(), more.begin(), more.end());
   return constants;
 }
-
-}  // namespace
-
-SvgfShaders::SvgfShaders(VulkanContext& context)
-    : group_width_(group_width(context)),
-      group_height_(group_height(context)),
-      temporal_(context, load_port(context, "temporal"),
-                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
-                specialization(context)),
-      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush),
-                specialization(context)),
-      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
-                  specialization(context, {5})),
-      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
-                  specialization(context, {3})),
-      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush),
-                specialization(context)),
-      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
-               specialization(context)),
-      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization(context)) {}
 
 uint32_t SvgfShaders::groups_x(uint32_t width) const { return group_count(width, group_width_); }
 uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(height, group_height_); }

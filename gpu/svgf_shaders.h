@@ -12,6 +12,9 @@
 #include "filters/taa/taa_shared.h"
 #include "gpu/compute.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace rtdr {
 
 // One plane per stream: [0] direct, [1] indirect.
@@ -66,11 +69,15 @@ class SvgfShaders {
            const GpuBuffer& out, const TaaPush& push) const;
 
  private:
+  // The specialization constants every SVGF port takes (the workgroup shape), then `more` (the a-trous kernel
+  // size). Needs group_width_ and group_height_, which are initialized before the pipelines.
+  std::vector<int32_t> specialization(const std::vector<int32_t>& more = {}) const;
   // Workgroups covering a frame `width` (`height`) pixels wide (high).
   uint32_t groups_x(uint32_t width) const;
   uint32_t groups_y(uint32_t height) const;
 
-  uint32_t group_width_, group_height_;  // the SVGF ports' workgroup shape on this device (planes_shared.h)
+  // The SVGF ports' workgroup shape on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
+  uint32_t group_width_, group_height_;
   ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_;
 };
 

@@ -17,10 +17,22 @@
 #define RTDR_SHARED_INT int
 #define RTDR_SHARED_VEC2 vec2
 #define RTDR_SHARED_CONST const
+#endif
 
+#ifdef __cplusplus
+namespace rtdr {
+#endif
+// The largest finite half (fp16). A store into a half record saturates there (RTDR_OUTPUT_RGBA16F), where
+// rounding would give an infinity, and an infinity times a tap weight of 0 a NaN.
+RTDR_SHARED_CONST float kHalfMax = 65504.0f;
+#ifdef __cplusplus
+}  // namespace rtdr
+#endif
+
+#ifndef __cplusplus
 // How a port reads an input plane: RTDR_INPUT_RGBA(binding, name) declares the plane and a function name(i) that
-// returns its texel i as a vec4 (RTDR_INPUT_RG: vec4(x, y, 0, 1); RTDR_INPUT_UINT: uvec4(id, 0, 0, 1)), the same
-// in both builds of every shader (gpu/CMakeLists.txt compiles each one twice):
+// returns its texel i as a vec4 (RTDR_INPUT_RG: vec4(x, y, 0, 1); RTDR_INPUT_UINT: uvec4(id, 0, 0, 1);
+// RTDR_INPUT_RGBA16F: four halves, 8 bytes a texel, as a vec4, exactly), the same in both builds of every shader (gpu/CMakeLists.txt compiles each one twice):
 //   <stem>.spv          storage texel buffers, read with imageLoad. On lavapipe an image load gathers the texel
 //                       for all lanes at once, inline, where a storage-buffer load runs lane by lane and a texelFetch
 //                       calls a sampling function, which makes the shader spill its registers around every call
@@ -39,6 +51,12 @@
 #define RTDR_INPUT_UINT(b, name)                                                                      \
   layout(std430, set = 0, binding = b) readonly buffer name##_records { uint name##_data[]; }; \
   uvec4 name(int i) { return uvec4(name##_data[i], 0u, 0u, 1u); }
+#define RTDR_INPUT_RGBA16F(b, name)                                                                    \
+  layout(std430, set = 0, binding = b) readonly buffer name##_records { uvec2 name##_data[]; }; \
+  vec4 name(int i) {                                                                             \
+    const uvec2 halves = name##_data[i];                                                         \
+    return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y));                             \
+  }
 #else
 #define RTDR_INPUT_RGBA(b, name)                                                       \
   layout(set = 0, binding = b, rgba32f) uniform readonly imageBuffer name##_texels; \
@@ -49,7 +67,26 @@
 #define RTDR_INPUT_UINT(b, name)                                                      \
   layout(set = 0, binding = b, r32ui) uniform readonly uimageBuffer name##_texels; \
   uvec4 name(int i) { return imageLoad(name##_texels, i); }
+#define RTDR_INPUT_RGBA16F(b, name)                                                     \
+  layout(set = 0, binding = b, rgba16f) uniform readonly imageBuffer name##_texels; \
+  vec4 name(int i) { return imageLoad(name##_texels, i); }
 #endif
+
+// How a port writes an output plane: RTDR_OUTPUT_RGBA(binding, name) declares a write-only std430 array of vec4
+// and a function name(i, v) that stores v as its texel i; RTDR_OUTPUT_RGBA16F stores v as four halves (8 bytes,
+// packHalf2x16's layout, which is rgba16f's: x in the low 16 bits), each component first clamped to +-kHalfMax.
+// The conversion gives one of the two halves nearest v, which one the device chooses (the Vulkan spec's
+// floating-point conversion rule): a relative error under 2^-10, or an absolute one under 2^-24 below the
+// smallest normal half (2^-14).
+#define RTDR_OUTPUT_RGBA(b, name)                                                                      \
+  layout(std430, set = 0, binding = b) writeonly buffer name##_records { vec4 name##_data[]; }; \
+  void name(int i, vec4 v) { name##_data[i] = v; }
+#define RTDR_OUTPUT_RGBA16F(b, name)                                                                    \
+  layout(std430, set = 0, binding = b) writeonly buffer name##_records { uvec2 name##_data[]; }; \
+  void name(int i, vec4 v) {                                                                      \
+    const vec4 saturated = clamp(v, -kHalfMax, kHalfMax);                                         \
+    name##_data[i] = uvec2(packHalf2x16(saturated.xy), packHalf2x16(saturated.zw));               \
+  }
 #endif
 
 #endif  // RTDR_CORE_SHADER_SHARED_H

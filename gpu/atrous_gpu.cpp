@@ -27,13 +27,12 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
   AtrousOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   if (out.color.data.empty()) return out;
 
-  const auto in = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+  const auto in = illumination_buffer(context, w, h),
              surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              grad = plane_buffer(context, w, h, TexelFormat::RG32F),
-             out_direct = plane_buffer(context, w, h, TexelFormat::RGBA32F),
-             out_indirect = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             out_direct = illumination_buffer(context, w, h), out_indirect = illumination_buffer(context, w, h),
              prefiltered = plane_buffer(context, w, h, TexelFormat::RG32F);
-  pack_rgbw(color, &variance, *in);
+  pack_illumination(color, &variance, *in);
   pack_surface(s, *surface);
   pack_vec2(s.depth_grad, *grad);
 
@@ -48,7 +47,7 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
       ms);
 
   out.color = unpack_rgb(*out_direct, w, h);
-  out.variance = unpack_channel(*out_direct, w, h, 4, 3);
+  out.variance = unpack_variance(*out_direct, w, h);
   out.prefiltered_variance = unpack_channel(*prefiltered, w, h, 2, 0);
   return out;
 }

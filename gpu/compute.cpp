@@ -16,6 +16,7 @@ VkFormat vk_format(TexelFormat format) {
     case TexelFormat::R32F: return VK_FORMAT_R32_SFLOAT;
     case TexelFormat::RG32F: return VK_FORMAT_R32G32_SFLOAT;
     case TexelFormat::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case TexelFormat::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
     case TexelFormat::R32UI: return VK_FORMAT_R32_UINT;
     case TexelFormat::None: break;
   }
@@ -45,11 +46,16 @@ std::vector<uint32_t> mappable_memory_types(const VulkanContext& context, uint32
 }  // namespace
 
 size_t texel_floats(TexelFormat format) {
-  return format == TexelFormat::RGBA32F ? 4 : format == TexelFormat::RG32F ? 2 : 1;
+  switch (format) {
+    case TexelFormat::RGBA32F: return 4;
+    case TexelFormat::RG32F:
+    case TexelFormat::RGBA16F: return 2;
+    default: return 1;
+  }
 }
 
 GpuBuffer::GpuBuffer(VulkanContext& context, size_t floats, TexelFormat format, Memory memory)
-    : device_(context.device()), floats_(floats) {
+    : device_(context.device()), floats_(floats), format_(format) {
   if (floats == 0) throw Error("GpuBuffer: a buffer needs at least one float");
   if (floats % texel_floats(format) != 0)
     throw Error("GpuBuffer: " + std::to_string(floats) + " floats are not whole texels of " +

@@ -31,9 +31,9 @@
 
 namespace rtdr {
 
-// The texel formats a GpuBuffer can be viewed with: 1, 2 or 4 floats, or 1 uint, per texel.
-enum class TexelFormat { None, R32F, RG32F, RGBA32F, R32UI };
-// 32-bit components per texel: 1, 2 or 4 (1 for None).
+// The texel formats a GpuBuffer can be viewed with: 1, 2 or 4 floats, 4 halves, or 1 uint, per texel.
+enum class TexelFormat { None, R32F, RG32F, RGBA32F, RGBA16F, R32UI };
+// 32-bit words per texel: 1, 2 or 4 (RGBA16F: 2; None: 1). A GpuBuffer counts its size in such words ("floats").
 size_t texel_floats(TexelFormat format);
 
 // Where a buffer's memory lives. Both kinds are mapped and host-coherent.
@@ -54,6 +54,7 @@ class GpuBuffer {
   GpuBuffer& operator=(const GpuBuffer&) = delete;
 
   size_t floats() const { return floats_; }
+  TexelFormat format() const { return format_; }
   VkBuffer handle() const { return buffer_; }
   VkBufferView view() const { return view_; }  // VK_NULL_HANDLE without a format
   void upload(std::span<const float> values);  // values.size() must equal floats()
@@ -68,6 +69,7 @@ class GpuBuffer {
 
   VkDevice device_;
   size_t floats_;
+  TexelFormat format_;
   VkBuffer buffer_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkBufferView view_ = VK_NULL_HANDLE;

@@ -19,13 +19,12 @@ RgbPlane remodulate_vulkan(VulkanContext& context, const RgbPlane& direct, const
   if (colour.data.empty()) return colour;
 
   const int w = direct.width, h = direct.height;
-  const auto direct_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
-             indirect_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+  const auto direct_buffer = illumination_buffer(context, w, h), indirect_buffer = illumination_buffer(context, w, h),
              albedo_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              emission_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              colour_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F);
-  pack_rgbw(direct, nullptr, *direct_buffer);
-  pack_rgbw(indirect, nullptr, *indirect_buffer);
+  pack_illumination(direct, nullptr, *direct_buffer);
+  pack_illumination(indirect, nullptr, *indirect_buffer);
   pack_rgbw(albedo, nullptr, *albedo_buffer);
   pack_rgbw(emission, nullptr, *emission_buffer);
 

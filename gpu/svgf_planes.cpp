@@ -4,21 +4,65 @@
 #include "core/error.h"
 #include "filters/svgf/planes_shared.h"
 
+#include <Imath/half.h>
+
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstring>
 #include <string>
 
 namespace rtdr {
 
 namespace {
 
-// The buffer holds exactly `pixels` records of `floats` floats.
-void check_fits(const GpuBuffer& buffer, size_t pixels, size_t floats, const char* what) {
-  if (buffer.floats() != pixels * floats && !(pixels == 0 && buffer.floats() == 1))
-    throw Error(std::string(what) + ": a buffer of " + std::to_string(buffer.floats()) + " floats cannot hold " +
-                std::to_string(pixels) + " records of " + std::to_string(floats));
+bool is_half(const GpuBuffer& buffer) { return buffer.format() == TexelFormat::RGBA16F; }
+
+// The buffer holds exactly `pixels` records of `values` values: floats, or halves in an RGBA16F buffer (two to a
+// 32-bit word).
+void check_fits(const GpuBuffer& buffer, size_t pixels, size_t values, const char* what) {
+  const size_t words = is_half(buffer) ? pixels * values / 2 : pixels * values;
+  if ((is_half(buffer) && values != 4) || (buffer.floats() != words && !(pixels == 0 && buffer.floats() == 1)))
+    throw Error(std::string(what) + ": a buffer of " + std::to_string(buffer.floats()) + " words cannot hold " +
+                std::to_string(pixels) + " records of " + std::to_string(values) + (is_half(buffer) ? " halves" : ""));
+}
+
+// The bits of the half an fp16 record stores for v: saturated at +-kHalfMax, as RTDR_OUTPUT_RGBA16F does, then
+// rounded to the nearest half, ties to even (Imath).
+uint16_t half_bits(float v) { return Imath::half(std::clamp(v, -kHalfMax, kHalfMax)).bits(); }
+
+// The four values (a, b, c, d) as one RGBA16F texel, in packHalf2x16's layout: two 32-bit words, each holding its
+// first value in the low 16 bits.
+void store_halves(float* texel, float a, float b, float c, float d) {
+  const uint32_t words[2] = {uint32_t(half_bits(a)) | uint32_t(half_bits(b)) << 16,
+                             uint32_t(half_bits(c)) | uint32_t(half_bits(d)) << 16};
+  std::memcpy(texel, words, sizeof(words));
+}
+
+// Value `value` of record i in a buffer of records of `values` values, widened to float where it is a half.
+float record_value(const GpuBuffer& buffer, size_t values, size_t i, size_t value) {
+  if (!is_half(buffer)) return buffer.data()[values * i + value];
+  uint32_t word;
+  std::memcpy(&word, buffer.data() + (values * i + value) / 2, sizeof(word));
+  return float(Imath::half(Imath::half::FromBits, uint16_t(value % 2 ? word >> 16 : word & 0xFFFFu)));
 }
 
 }  // namespace
+
+float half_record_value(float v) { return float(Imath::half(Imath::half::FromBits, half_bits(v))); }
+
+float half_record_variance(float variance) {
+  const float sigma = half_record_value(std::sqrt(variance));
+  return sigma * sigma;
+}
+
+TexelFormat illumination_format(const VulkanContext& context) {
+  return context.illumination_records() == IlluminationRecords::Fp16 ? TexelFormat::RGBA16F : TexelFormat::RGBA32F;
+}
+
+std::unique_ptr<GpuBuffer> illumination_buffer(VulkanContext& context, int width, int height) {
+  return plane_buffer(context, width, height, illumination_format(context));
+}
 
 std::unique_ptr<GpuBuffer> plane_buffer(VulkanContext& context, int width, int height, TexelFormat format) {
   // An empty plane still gets one texel: a binding needs a buffer, and the shaders never read it.
@@ -41,6 +85,7 @@ void pack_surface(const SurfacePlanes& s, GpuBuffer& out) {
 
 void pack_rgbw(const RgbPlane& rgb, const FloatPlane* w, GpuBuffer& out) {
   const size_t pixels = rgb.data.size();
+  if (is_half(out)) throw Error("pack_rgbw: colour records are never halves (pack_illumination packs those)");
   check_fits(out, pixels, 4, "pack_rgbw");
   float* d = out.data();
   for (size_t i = 0; i < pixels; ++i) {
@@ -48,6 +93,16 @@ void pack_rgbw(const RgbPlane& rgb, const FloatPlane* w, GpuBuffer& out) {
     d[4 * i + 1] = rgb.data[i].g;
     d[4 * i + 2] = rgb.data[i].b;
     d[4 * i + 3] = w ? w->data[i] : 0.0f;
+  }
+}
+
+void pack_illumination(const RgbPlane& rgb, const FloatPlane* variance, GpuBuffer& out) {
+  if (!is_half(out)) return pack_rgbw(rgb, variance, out);
+  const size_t pixels = rgb.data.size();
+  check_fits(out, pixels, 4, "pack_illumination");
+  for (size_t i = 0; i < pixels; ++i) {
+    const glm::vec3 c = rgb.data[i];
+    store_halves(out.data() + 2 * i, c.r, c.g, c.b, variance ? std::sqrt(variance->data[i]) : 0.0f);
   }
 }
 
@@ -83,16 +138,22 @@ void pack_ids(const UIntPlane& plane, GpuBuffer& out) {
 FloatPlane unpack_channel(const GpuBuffer& in, int width, int height, int components, int channel) {
   FloatPlane plane(width, height);
   check_fits(in, plane.data.size(), size_t(components), "unpack_channel");
-  const float* d = in.data();
-  for (size_t i = 0; i < plane.data.size(); ++i) plane.data[i] = d[size_t(components) * i + size_t(channel)];
+  for (size_t i = 0; i < plane.data.size(); ++i) plane.data[i] = record_value(in, components, i, size_t(channel));
+  return plane;
+}
+
+FloatPlane unpack_variance(const GpuBuffer& in, int width, int height) {
+  FloatPlane plane = unpack_channel(in, width, height, 4, 3);
+  if (is_half(in))
+    for (float& v : plane.data) v *= v;  // the record holds the standard deviation (planes_shared.h)
   return plane;
 }
 
 RgbPlane unpack_rgb(const GpuBuffer& in, int width, int height) {
   RgbPlane plane(width, height);
   check_fits(in, plane.data.size(), 4, "unpack_rgb");
-  const float* d = in.data();
-  for (size_t i = 0; i < plane.data.size(); ++i) plane.data[i] = glm::vec3(d[4 * i], d[4 * i + 1], d[4 * i + 2]);
+  for (size_t i = 0; i < plane.data.size(); ++i)
+    plane.data[i] = glm::vec3(record_value(in, 4, i, 0), record_value(in, 4, i, 1), record_value(in, 4, i, 2));
   return plane;
 }
 

@@ -24,9 +24,11 @@ std::vector<Binding> bindings(const VulkanContext& context, uint32_t texel, uint
   return kinds;
 }
 
-// The SPIR-V of `stem` built for the context's input kind (gpu/CMakeLists.txt).
+// The SPIR-V of `stem` built for the context's illumination records and input kind (gpu/CMakeLists.txt).
 std::vector<uint32_t> load_port(const VulkanContext& context, const std::string& stem) {
-  return load_shader(context.shader_inputs() == ShaderInputs::Storage ? stem + "_storage" : stem);
+  const bool half = context.illumination_records() == IlluminationRecords::Fp16;
+  const bool storage = context.shader_inputs() == ShaderInputs::Storage;
+  return load_shader(stem + (half ? "_fp16" : "") + (storage ? "_storage" : ""));
 }
 
 }  // namespace

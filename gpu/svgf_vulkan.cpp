@@ -34,14 +34,16 @@ struct SvgfVulkan::Buffers {
 
   Buffers(VulkanContext& context, int w, int h) : width(w), height(h) {
     const auto rgba = [&] { return plane_buffer(context, w, h, TexelFormat::RGBA32F); };
+    // Illumination records: RGBA32F, or RGBA16F with IlluminationRecords::Fp16 (planes_shared.h).
+    const auto illumination = [&] { return illumination_buffer(context, w, h); };
     for (int s = 0; s < 2; ++s) {
-      noisy[s] = rgba();
-      temporal[s] = rgba();
-      variance[s] = rgba();
+      noisy[s] = illumination();
+      temporal[s] = illumination();
+      variance[s] = illumination();
       surface[s] = rgba();
       mesh[s] = plane_buffer(context, w, h, TexelFormat::R32UI);
       display[s] = rgba();
-      for (int k = 0; k < 2; ++k) moments[s][k] = rgba(), history[s][k] = rgba(), level[s][k] = rgba();
+      for (int k = 0; k < 2; ++k) moments[s][k] = rgba(), history[s][k] = illumination(), level[s][k] = illumination();
     }
     albedo = rgba();
     emission = rgba();
@@ -88,8 +90,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // 1. Upload: the host packs this frame's planes into the device's records.
   const auto t0 = std::chrono::steady_clock::now();
   const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  pack_rgbw(rgb_plane(in, "direct"), nullptr, *b.noisy[0]);
-  pack_rgbw(rgb_plane(in, "indirect"), nullptr, *b.noisy[1]);
+  pack_illumination(rgb_plane(in, "direct"), nullptr, *b.noisy[0]);
+  pack_illumination(rgb_plane(in, "indirect"), nullptr, *b.noisy[1]);
   pack_rgbw(rgb_plane(in, "albedo"), nullptr, *b.albedo);
   pack_rgbw(rgb_plane(in, "emission"), nullptr, *b.emission);
   pack_surface(surface, *b.surface[cur]);

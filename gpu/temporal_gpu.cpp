@@ -42,28 +42,30 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
   if (out.moment1.data.empty()) return out;
 
   const int hw = has_history ? pw : 0, hh = has_history ? ph : 0;
-  const auto noisy_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+  const auto noisy_buffer = illumination_buffer(context, w, h),
              surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              grad = plane_buffer(context, w, h, TexelFormat::RG32F),
              mesh = plane_buffer(context, w, h, TexelFormat::R32UI),
              motion = plane_buffer(context, w, h, TexelFormat::RG32F),
-             prev_color = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
+             prev_color = illumination_buffer(context, hw, hh),
              prev_moments = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
              prev_surface = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
              prev_mesh = plane_buffer(context, hw, hh, TexelFormat::R32UI);
-  pack_rgbw(noisy, nullptr, *noisy_buffer);
+  pack_illumination(noisy, nullptr, *noisy_buffer);
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
   pack_ids(cur.mesh, *mesh);
   pack_vec2(cur.motion, *motion);
   if (has_history) {
-    pack_rgbw(prev.color, nullptr, *prev_color);
+    pack_illumination(prev.color, nullptr, *prev_color);
     pack_moments(prev.moment1, prev.moment2, prev.length, *prev_moments);
     pack_surface(prev.surface, *prev_surface);
     pack_ids(prev.surface.mesh, *prev_mesh);
   }
-  std::unique_ptr<GpuBuffer> outputs[4];
-  for (auto& o : outputs) o = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+  // Illumination records C' (direct, indirect), then moments records.
+  const std::unique_ptr<GpuBuffer> outputs[4] = {
+      illumination_buffer(context, w, h), illumination_buffer(context, w, h),
+      plane_buffer(context, w, h, TexelFormat::RGBA32F), plane_buffer(context, w, h, TexelFormat::RGBA32F)};
 
   const TemporalPush push{uint32_t(w),
                           uint32_t(h),

@@ -24,13 +24,12 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
   if (sigma2.data.empty()) return sigma2;
 
   // The temporal output as the shader reads it: illumination records C' and moments records.
-  const auto illumination = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+  const auto illumination = illumination_buffer(context, w, h),
              moments = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              grad = plane_buffer(context, w, h, TexelFormat::RG32F),
-             out_direct = plane_buffer(context, w, h, TexelFormat::RGBA32F),
-             out_indirect = plane_buffer(context, w, h, TexelFormat::RGBA32F);
-  pack_rgbw(t.color, nullptr, *illumination);
+             out_direct = illumination_buffer(context, w, h), out_indirect = illumination_buffer(context, w, h);
+  pack_illumination(t.color, nullptr, *illumination);
   pack_moments(t.moment1, t.moment2, t.length, *moments);
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
@@ -45,7 +44,7 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
                          {surface.get(), grad.get(), nullptr, nullptr}, {out_direct.get(), out_indirect.get()}, push);
       },
       ms);
-  return unpack_channel(*out_direct, w, h, 4, 3);
+  return unpack_variance(*out_direct, w, h);
 }
 
 }  // namespace rtdr

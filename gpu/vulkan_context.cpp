@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
+#include <string>
 
 namespace rtdr {
 
@@ -110,19 +112,29 @@ VkPhysicalDevice choose_device(VkInstance instance) {
   return nvidia ? nvidia : first;
 }
 
+// `wanted`, or where it is Auto and the environment variable `variable` is set, the kind that variable names
+// (by `name`, one of `kinds`); Auto where neither says. Throws rtdr::Error for a name that is none of them.
+template <class Kind>
+Kind from_environment(Kind wanted, const char* variable, std::initializer_list<Kind> kinds,
+                      const char* (*name)(Kind)) {
+  const char* env = std::getenv(variable);
+  if (wanted != Kind::Auto || !env || !*env) return wanted;
+  std::string names;
+  for (const Kind kind : kinds) {
+    if (std::strcmp(env, name(kind)) == 0) return kind;
+    names += std::string(names.empty() ? "" : " or ") + name(kind);
+  }
+  throw Error(std::string(variable) + " must be " + names + ", got \"" + env + "\"");
+}
+
 // VulkanOptions::inputs resolved for a device with `properties` and `features`.
 ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDeviceProperties& properties,
                             const VkPhysicalDeviceFeatures& features) {
   const bool storage_fits = properties.limits.maxPerStageDescriptorStorageBuffers >= kStorageInputBindings;
   const bool texel_fits = properties.limits.maxPerStageDescriptorStorageImages >= kTexelInputBindings &&
                           features.shaderStorageImageExtendedFormats;
-  const char* env = std::getenv("RTDR_VK_INPUTS");
-  if (wanted == ShaderInputs::Auto && env && *env) {
-    for (const ShaderInputs kind : {ShaderInputs::Texel, ShaderInputs::Storage})
-      if (std::strcmp(env, shader_inputs_name(kind)) == 0) wanted = kind;
-    if (wanted == ShaderInputs::Auto)
-      throw Error(std::string("RTDR_VK_INPUTS must be texel or storage, got \"") + env + "\"");
-  }
+  wanted = from_environment(wanted, "RTDR_VK_INPUTS", {ShaderInputs::Texel, ShaderInputs::Storage},
+                            shader_inputs_name);
   if (wanted == ShaderInputs::Auto)
     wanted = storage_fits && (properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU || !texel_fits)
                  ? ShaderInputs::Storage
@@ -144,6 +156,10 @@ ShaderInputs resolve_inputs(ShaderInputs wanted, const VkPhysicalDevicePropertie
 
 const char* shader_inputs_name(ShaderInputs inputs) {
   return inputs == ShaderInputs::Texel ? "texel" : inputs == ShaderInputs::Storage ? "storage" : "auto";
+}
+
+const char* illumination_records_name(IlluminationRecords records) {
+  return records == IlluminationRecords::Fp32 ? "fp32" : records == IlluminationRecords::Fp16 ? "fp16" : "auto";
 }
 
 void vk_check(VkResult result, const char* what) {
@@ -186,6 +202,10 @@ VulkanContext::VulkanContext(const VulkanOptions& options) : log_(std::make_uniq
     VkPhysicalDeviceFeatures features;
     vkGetPhysicalDeviceFeatures(physical_device_, &features);
     inputs_ = resolve_inputs(options.inputs, properties, features);
+    illumination_ = from_environment(options.illumination, "RTDR_VK_ILLUMINATION",
+                                     {IlluminationRecords::Fp32, IlluminationRecords::Fp16}, illumination_records_name);
+    if (illumination_ == IlluminationRecords::Auto)
+      illumination_ = cpu_device_ ? IlluminationRecords::Fp32 : IlluminationRecords::Fp16;
     timestamp_period_ns_ = properties.limits.timestampPeriod;
     const uint32_t family = uint32_t(compute_queue_family(physical_device_, &timestamp_valid_bits_));
 

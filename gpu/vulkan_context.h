@@ -23,6 +23,13 @@ enum class ShaderInputs { Auto, Texel, Storage };
 // "auto", "texel" or "storage": the spelling of $RTDR_VK_INPUTS and of reports.
 const char* shader_inputs_name(ShaderInputs inputs);
 
+// How the SVGF ports store illumination records, the planes the a-trous taps gather (filters/svgf/planes_shared.h):
+// four floats (16 bytes), or four halves (8 bytes), which halve the bytes those taps pull through a GPU's caches
+// at the cost of one rounding to 11 significant bits per store (docs/performance.md, "Packed illumination").
+enum class IlluminationRecords { Auto, Fp32, Fp16 };
+// "auto", "fp32" or "fp16": the spelling of $RTDR_VK_ILLUMINATION and of reports.
+const char* illumination_records_name(IlluminationRecords records);
+
 struct VulkanOptions {
   bool validation = false;  // load VK_LAYER_KHRONOS_validation and count its messages
   // Auto: $RTDR_VK_INPUTS (texel or storage) when set; else texel on a CPU device (lavapipe), storage on a GPU
@@ -31,6 +38,9 @@ struct VulkanOptions {
   // shaderStorageImageExtendedFormats feature (for rg32f texels); the context throws when the kind asked for does
   // not fit the device.
   ShaderInputs inputs = ShaderInputs::Auto;
+  // Auto: $RTDR_VK_ILLUMINATION (fp32 or fp16) when set; else fp32 on a CPU device, where bandwidth is not what
+  // bounds the ports and the records then hold the golden passes' values exactly, and fp16 on a GPU.
+  IlluminationRecords illumination = IlluminationRecords::Auto;
 };
 
 // The most storage buffers a port binds with storage inputs: the temporal pass's 16 planes (temporal_shared.h).
@@ -62,6 +72,7 @@ class VulkanContext {
   const std::string& device_name() const { return device_name_; }
   bool cpu_device() const { return cpu_device_; }  // a CPU implementation such as lavapipe, not a GPU
   ShaderInputs shader_inputs() const { return inputs_; }  // Texel or Storage, never Auto
+  IlluminationRecords illumination_records() const { return illumination_; }  // Fp32 or Fp16, never Auto
 
   // Timestamp queries: supported when the compute queue has valid bits; a tick lasts timestamp_period_ns.
   bool has_timestamps() const { return timestamp_valid_bits_ > 0; }
@@ -90,6 +101,7 @@ class VulkanContext {
   std::string device_name_;
   bool cpu_device_ = false;
   ShaderInputs inputs_ = ShaderInputs::Texel;
+  IlluminationRecords illumination_ = IlluminationRecords::Fp32;
   uint32_t timestamp_valid_bits_ = 0;
   float timestamp_period_ns_ = 0.0f;
 };

@@ -25,12 +25,12 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, direct_in)
-RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_ILLUMINATION(0, direct_in)
+RTDR_INPUT_ILLUMINATION(1, indirect_in)
 RTDR_INPUT_RGBA(2, surface)
 RTDR_INPUT_RG(3, depth_grad)
-layout(std430, set = 0, binding = 4) writeonly buffer DirectOut { vec4 direct_out[]; };
-layout(std430, set = 0, binding = 5) writeonly buffer IndirectOut { vec4 indirect_out[]; };
+RTDR_OUTPUT_ILLUMINATION(4, direct_out)
+RTDR_OUTPUT_ILLUMINATION(5, indirect_out)
 layout(std430, set = 0, binding = 6) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
 
 layout(push_constant) uniform Push { AtrousPush push; };
@@ -168,8 +168,8 @@ void main() {
 
   // No surface, nothing to compare with: the input passes through.
   if (!has_surface(s_p)) {
-    direct_out[i] = c_p.stream[0];
-    indirect_out[i] = c_p.stream[1];
+    direct_out(i, c_p.stream[0]);
+    indirect_out(i, c_p.stream[1]);
     return;
   }
   // atrous_kernel (atrous.cpp): the host has checked kernel_size is 5 or 3; the weights are atrous_shared.h's.
@@ -214,6 +214,6 @@ void main() {
   const vec3 c_next_indirect = sum_hwc[1] / sum_hw[1];
   // Var(c_{i+1}(p)) = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2 [SVGF17 Sec. 4.3].
   precise vec2 var_next = sum_h2w2_var / (sum_hw * sum_hw);
-  direct_out[i] = vec4(c_next_direct, var_next[0]);
-  indirect_out[i] = vec4(c_next_indirect, var_next[1]);
+  direct_out(i, vec4(c_next_direct, var_next[0]));
+  indirect_out(i, vec4(c_next_indirect, var_next[1]));
 }

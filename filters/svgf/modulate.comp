@@ -11,8 +11,8 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, direct_in)
-RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_ILLUMINATION(0, direct_in)
+RTDR_INPUT_ILLUMINATION(1, indirect_in)
 RTDR_INPUT_RGBA(2, albedo_in)
 RTDR_INPUT_RGBA(3, emission_in)
 layout(std430, set = 0, binding = 4) writeonly buffer Colour { vec4 colour_out[]; };

@@ -1,15 +1,23 @@
 // How the SVGF shader ports keep planes on the GPU, written once for the C++ that packs and unpacks them
 // (gpu/svgf_planes.h) and the GLSL that reads them (filters/svgf/*.comp). Both compilers include this file.
 //
-// Every plane is row-major, pixel (x, y) at texel y * width + x, and fp32 throughout (no packing changes a value:
-// the ports stay within the error bounds of docs/equations.md). Inputs are read through core/shader_shared.h's
-// RTDR_INPUT_* (texel buffers on lavapipe, storage buffers on a GPU); outputs are std430 arrays of the same
-// texels. Several planes share one RGBA32F texel, so that a tap costs one fetch per record rather than one per
-// plane (docs/performance.md, "Lavapipe"):
+// Every plane is row-major, pixel (x, y) at texel y * width + x, and fp32, except the illumination records of the
+// fp16 builds (below). Inputs are read through core/shader_shared.h's RTDR_INPUT_* (texel buffers on lavapipe,
+// storage buffers on a GPU); outputs are std430 arrays of the same texels. Several planes share one texel, so
+// that a tap costs one fetch per record rather than one per plane (docs/performance.md, "Lavapipe"):
 //   surface      RGBA32F  (n.x, n.y, n.z, z): world normal and linear view depth; z = kNoSurfaceDepth (-1) where
 //                         the pixel has no surface (a visible surface always has z > 0, in front of the camera)
 //   illumination RGBA32F  (r, g, b, variance): one stream's colour and its variance estimate; the noisy input and
-//                         the temporal output carry variance 0 (the variance pass fills it in)
+//                         the temporal output carry variance 0 (the variance pass fills it in).
+//                RGBA16F  (r, g, b, sqrt(variance)) in the fp16 builds (RTDR_HALF_ILLUMINATION, <stem>_fp16*.spv;
+//                         IlluminationRecords::Fp16): half the bytes for the a-trous taps to gather, each value
+//                         rounded to 11 significant bits and saturated at kHalfMax where it is stored. The standard
+//                         deviation rather than the variance: a variance's range is the square of a colour's, so
+//                         fp16 would hold the small variances of converged pixels as subnormals, a few bits each,
+//                         and saturate a firefly's; the luminance weight [SVGF17 Eq. 5] divides by that standard
+//                         deviation, and stored as the variance it made the pipeline's colour 5x less accurate
+//                         (docs/performance.md, "Packed illumination"). Read and written with
+//                         RTDR_INPUT_ILLUMINATION and RTDR_OUTPUT_ILLUMINATION, which take and give the variance.
 //   moments      RGBA32F  (mu1', mu2', n, 0): the temporal pass's luminance moments and history length
 //   colour       RGBA32F  (r, g, b, 0): albedo, emission, remodulated colour, display colour
 //   depth_grad   RG32F    (dz/dx, dz/dy);  motion RG32F (pixels);  mesh R32UI (id.mesh, RTDR_INVALID_ID: none)
@@ -45,6 +53,25 @@ RTDR_SHARED_CONST int kSvgfGroupSizeYConstant = 1;
 #ifdef __cplusplus
 }  // namespace rtdr
 #else
+// RTDR_INPUT_ILLUMINATION(binding, name): an illumination plane and name(i), its record i as (r, g, b, variance);
+// RTDR_OUTPUT_ILLUMINATION(binding, name): a written one and name(i, v), which stores (r, g, b, variance) v.
+#ifdef RTDR_HALF_ILLUMINATION
+// The variance is the square of the stored standard deviation: exact in fp32 (11 significant bits squared). The
+// variances stored are never negative (the variance pass clamps at 0; the a-trous levels sum squares).
+#define RTDR_INPUT_ILLUMINATION(b, name)             \
+  RTDR_INPUT_RGBA16F(b, name##_halves)               \
+  vec4 name(int i) {                                 \
+    const vec4 record = name##_halves(i);            \
+    return vec4(record.rgb, record.w * record.w);    \
+  }
+#define RTDR_OUTPUT_ILLUMINATION(b, name) \
+  RTDR_OUTPUT_RGBA16F(b, name##_halves)   \
+  void name(int i, vec4 v) { name##_halves(i, vec4(v.rgb, sqrt(v.w))); }
+#else
+#define RTDR_INPUT_ILLUMINATION(b, name) RTDR_INPUT_RGBA(b, name)
+#define RTDR_OUTPUT_ILLUMINATION(b, name) RTDR_OUTPUT_RGBA(b, name)
+#endif
+
 // SurfacePlanes::covered: the surface record's pixel has a surface.
 bool has_surface(vec4 surface) { return surface.w != kNoSurfaceDepth; }
 #endif

@@ -17,20 +17,20 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, noisy_direct)
-RTDR_INPUT_RGBA(1, noisy_indirect)
+RTDR_INPUT_ILLUMINATION(0, noisy_direct)
+RTDR_INPUT_ILLUMINATION(1, noisy_indirect)
 RTDR_INPUT_RGBA(2, cur_surface)
 RTDR_INPUT_RG(3, cur_depth_grad)
 RTDR_INPUT_UINT(4, cur_mesh)
 RTDR_INPUT_RG(5, cur_motion)
-RTDR_INPUT_RGBA(6, prev_direct)
-RTDR_INPUT_RGBA(7, prev_indirect)
+RTDR_INPUT_ILLUMINATION(6, prev_direct)
+RTDR_INPUT_ILLUMINATION(7, prev_indirect)
 RTDR_INPUT_RGBA(8, prev_moments_direct)
 RTDR_INPUT_RGBA(9, prev_moments_indirect)
 RTDR_INPUT_RGBA(10, prev_surface)
 RTDR_INPUT_UINT(11, prev_mesh)
-layout(std430, set = 0, binding = 12) writeonly buffer OutDirect { vec4 out_direct[]; };
-layout(std430, set = 0, binding = 13) writeonly buffer OutIndirect { vec4 out_indirect[]; };
+RTDR_OUTPUT_ILLUMINATION(12, out_direct)
+RTDR_OUTPUT_ILLUMINATION(13, out_indirect)
 layout(std430, set = 0, binding = 14) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
 layout(std430, set = 0, binding = 15) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
 
@@ -226,8 +226,8 @@ TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h) {
 }
 
 void write(int i, TemporalPixel direct, TemporalPixel indirect) {
-  out_direct[i] = vec4(direct.color, 0.0);
-  out_indirect[i] = vec4(indirect.color, 0.0);
+  out_direct(i, vec4(direct.color, 0.0));
+  out_indirect(i, vec4(indirect.color, 0.0));
   out_moments_direct[i] = vec4(direct.moment1, direct.moment2, direct.len, 0.0);
   out_moments_indirect[i] = vec4(indirect.moment1, indirect.moment2, indirect.len, 0.0);
 }

@@ -15,14 +15,14 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, direct_in)
-RTDR_INPUT_RGBA(1, indirect_in)
+RTDR_INPUT_ILLUMINATION(0, direct_in)
+RTDR_INPUT_ILLUMINATION(1, indirect_in)
 RTDR_INPUT_RGBA(2, moments_direct)
 RTDR_INPUT_RGBA(3, moments_indirect)
 RTDR_INPUT_RGBA(4, surface)
 RTDR_INPUT_RG(5, depth_grad)
-layout(std430, set = 0, binding = 6) writeonly buffer DirectOut { vec4 direct_out[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer IndirectOut { vec4 indirect_out[]; };
+RTDR_OUTPUT_ILLUMINATION(6, direct_out)
+RTDR_OUTPUT_ILLUMINATION(7, indirect_out)
 
 layout(push_constant) uniform Push { VariancePush push; };
 
@@ -130,6 +130,6 @@ void main() {
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = index_of(pixel.x, pixel.y);
   const vec2 sigma2 = variance_pixel(pixel.x, pixel.y, surface(i));
-  direct_out[i] = vec4(direct_in(i).rgb, sigma2.x);
-  indirect_out[i] = vec4(indirect_in(i).rgb, sigma2.y);
+  direct_out(i, vec4(direct_in(i).rgb, sigma2.x));
+  indirect_out(i, vec4(indirect_in(i).rgb, sigma2.y));
 }

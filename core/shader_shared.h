@@ -32,7 +32,8 @@ RTDR_SHARED_CONST float kHalfMax = 65504.0f;
 #ifndef __cplusplus
 // How a port reads an input plane: RTDR_INPUT_RGBA(binding, name) declares the plane and a function name(i) that
 // returns its texel i as a vec4 (RTDR_INPUT_RG: vec4(x, y, 0, 1); RTDR_INPUT_UINT: uvec4(id, 0, 0, 1);
-// RTDR_INPUT_RGBA16F: four halves, 8 bytes a texel, as a vec4, exactly), the same in both builds of every shader (gpu/CMakeLists.txt compiles each one twice):
+// RTDR_INPUT_RGBA16F: four halves, 8 bytes a texel, as a vec4, exactly), the same in both input builds of every
+// shader (gpu/CMakeLists.txt compiles each one for both):
 //   <stem>.spv          storage texel buffers, read with imageLoad. On lavapipe an image load gathers the texel
 //                       for all lanes at once, inline, where a storage-buffer load runs lane by lane and a texelFetch
 //                       calls a sampling function, which makes the shader spill its registers around every call

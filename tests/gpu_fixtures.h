@@ -5,6 +5,7 @@
 
 #include "filters/image.h"
 #include "filters/svgf/svgf_shared.h"
+#include "gpu/svgf_planes.h"
 #include "gpu/vulkan_context.h"
 
 #include <catch2/catch.hpp>
@@ -21,18 +22,61 @@
 namespace rtdr::gpu_test {
 
 // The device for these tests, with the validation layer; null (after a WARN saying why) when there is none:
-// the calling test then returns, skipped rather than failed. Every test calling it runs twice (GENERATE): with
-// the ports built for texel-buffer inputs and with those built for storage-buffer inputs (core/shader_shared.h),
-// so both builds of every shader are validated on whatever device there is.
+// the calling test then returns, skipped rather than failed. Every test calling it runs four times (GENERATE):
+// with the ports built for texel-buffer inputs and for storage-buffer inputs (core/shader_shared.h), each with
+// fp32 and with fp16 illumination records (filters/svgf/planes_shared.h), so all four builds of every shader are
+// validated on whatever device there is.
 inline std::unique_ptr<VulkanContext> validated_context() {
   const ShaderInputs inputs = GENERATE(ShaderInputs::Texel, ShaderInputs::Storage);
+  const IlluminationRecords records = GENERATE(IlluminationRecords::Fp32, IlluminationRecords::Fp16);
   std::string reason;
   if (!VulkanContext::available(&reason)) {
     WARN("SKIPPED: no Vulkan device: " << reason);
     return nullptr;
   }
-  UNSCOPED_INFO("shader inputs: " << shader_inputs_name(inputs) << " buffers");
-  return std::make_unique<VulkanContext>(VulkanOptions{.validation = true, .inputs = inputs});
+  UNSCOPED_INFO("shader inputs: " << shader_inputs_name(inputs) << " buffers, "
+                                  << illumination_records_name(records) << " illumination records");
+  return std::make_unique<VulkanContext>(
+      VulkanOptions{.validation = true, .inputs = inputs, .illumination = records});
+}
+
+inline bool half_records(const VulkanContext& context) {
+  return context.illumination_records() == IlluminationRecords::Fp16;
+}
+
+// What a port reads of an illumination plane: with fp16 records, each colour value and each variance as the record
+// holds it (half_record_value, half_record_variance: gpu/svgf_planes.h); with fp32 records the plane itself. The
+// golden pass run on these reads what the port reads, so the two differ only by what the port computes and stores.
+inline RgbPlane stored_colour(const VulkanContext& context, RgbPlane plane) {
+  if (half_records(context))
+    for (glm::vec3& v : plane.data)
+      v = glm::vec3(half_record_value(v.r), half_record_value(v.g), half_record_value(v.b));
+  return plane;
+}
+inline FloatPlane stored_variance(const VulkanContext& context, FloatPlane plane) {
+  if (half_records(context))
+    for (float& v : plane.data) v = half_record_variance(v);
+  return plane;
+}
+
+// The largest relative error of storing an illumination colour value, and a variance, in the context's records:
+// 0 with fp32 records. With fp16 records a colour value becomes one of the two halves nearest it, as the device
+// chooses (core/shader_shared.h): under 2^-10 relative (11 significant bits), or 2^-24 absolute below 2^-14, which
+// the tests' relative floors (1e-3 and above) turn into less than 2^-10 too; a variance is the square of its
+// standard deviation so stored: (1 + 2^-10)^2 - 1, about 2^-9.
+inline double colour_storage_error(const VulkanContext& context) {
+  return half_records(context) ? std::ldexp(1.0, -10) : 0.0;
+}
+inline double variance_storage_error(const VulkanContext& context) {
+  const double sigma = colour_storage_error(context);
+  return (1.0 + sigma) * (1.0 + sigma) - 1.0;
+}
+// The same for a variance v as an absolute error, the subnormal standard deviations included: a standard deviation
+// s below 2^-14 is stored within 2^-24, which moves s^2 by at most 2^-24 (2 s + 2^-24). 0 with fp32 records.
+inline double variance_storage_bound(const VulkanContext& context, double v) {
+  if (!half_records(context)) return 0.0;
+  const double step = std::ldexp(1.0, -24);
+  return variance_storage_error(context) * v + step * (2.0 * std::sqrt(v) + step);
 }
 
 // Any validation-layer warning or error fails the test (issue 6: "any validation message fails the test").

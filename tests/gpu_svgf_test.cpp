@@ -10,6 +10,15 @@
 // in steady state. The edge-stopping weights see those differences too, so 2e-3 leaves room for their
 // second-order effect. The floor 1e-2 keeps near-black pixels from dividing by almost nothing.
 //
+// With fp16 illumination records (the ports' _fp16 builds) the bound is kPipelineRelErrorFp16 = 2e-2. Why: a
+// frame's colour goes through 7 stores into halves, each within u = 2^-10 relative (gpu_fixtures.h): the noisy
+// input (u/2: the host rounds to nearest), the temporal output and the 5 levels' outputs. With the weights held
+// fixed every pass is a convex combination of non-negative colours, which keeps relative errors: the temporal
+// output is within alpha u/2 + (1 - alpha) E_h + u of the golden one, where E_h is the colour history's error,
+// the first level's output of the frame before (E_h = that frame's temporal error + u). In steady state
+// E_h = 10.5 u and the colour is within 14.5 u = 1.4e-2. The weights respond to the rounded luminances and
+// standard deviations as well [SVGF17 Eq. 5]; measured: at most 2.8e-3 on the shipped scenes (flicker; lavapipe).
+//
 // The display colour (after TAA) is checked against the golden tone mapping and TAA (tonemap(), taa_pass()) of the
 // pipeline's own colour and its own previous display, per channel: |gpu - golden| <= kDisplayAbsError = 1e-3
 // (display values are in [0, 1]). Derivation: only the tone-mapped current colours differ, by at most 1e-6 per
@@ -56,6 +65,7 @@ using namespace rtdr::gpu_test;
 namespace {
 
 constexpr double kPipelineRelError = 2e-3;
+constexpr double kPipelineRelErrorFp16 = 2e-2;
 constexpr double kRelFloor = 1e-2;
 constexpr double kDisplayAbsError = 1e-3;
 
@@ -110,7 +120,7 @@ PipelineErrors compare_pipelines(VulkanContext& context, const std::string& scen
         double(std::count_if(display.begin(), display.end(), [](double e) { return !(e <= kPipelineRelError); })) /
         double(display.size());
     INFO(scene_name << " frame " << f << ": colour max relative error " << colour_max);
-    CHECK(colour_max <= kPipelineRelError);
+    CHECK(colour_max <= (half_records(context) ? kPipelineRelErrorFp16 : kPipelineRelError));
     // The display is the golden TAA of the pipeline's own tone-mapped colour and previous display.
     const RgbPlane tonemapped = tonemap(rgb_plane(got, "color"), TonemapParams{});
     const RgbPlane display_expected =
@@ -136,7 +146,8 @@ TEST_CASE("the Vulkan pipeline follows the golden SVGF over 10 frames of pillars
   INFO("device: " << context->device_name());
   const PipelineErrors worst = compare_pipelines(*context, "pillars", 96, 54, 10);
   WARN("pillars, 10 frames at 96x54: colour max relative error "
-       << worst.colour << " (bound " << kPipelineRelError << "); display max absolute error " << worst.display
+       << worst.colour << " (bound " << (half_records(*context) ? kPipelineRelErrorFp16 : kPipelineRelError)
+       << "); display max absolute error " << worst.display
        << " (bound " << kDisplayAbsError << "); against the golden display (not asserted): "
        << worst.display_outliers * 100.0 << "% of pixels beyond " << kPipelineRelError << ", max absolute error "
        << worst.display_golden);

@@ -16,6 +16,10 @@
 //   on sigma^2 itself is no good: sigma^2 = mu2 - mu1^2 cancels (sigma^2 << mu2 where the signal is bright
 //   and clean), and the relative error grows without bound as sigma^2 -> 0. With the spec's worst case
 //   d = 6.1e-5, 6 d = 3.7e-4; kSpatialTolerance = 4e-4 is that bound. The measured errors (printed) are far below.
+// - fp16 illumination records (the ports' _fp16 builds): the pass reads only the moments, which stay fp32, and
+//   stores sigma^2 as the square of a half standard deviation (filters/svgf/planes_shared.h): each bound above
+//   grows by that storage error, variance_storage_bound (gpu_fixtures.h): a relative (1 + 2^-10)^2 - 1 of
+//   sigma^2, plus what a subnormal standard deviation (below 2^-14) may lose. A 0 stays 0.
 #include "gpu/variance_gpu.h"
 
 #include "core/error.h"
@@ -43,9 +47,10 @@ constexpr double kSpatialTolerance = 4e-4;
 
 struct Errors {
   int temporal_pixels = 0, spatial_pixels = 0, uncovered_pixels = 0;
-  double temporal_max_abs = 0.0;        // must be 0
+  double temporal_max_abs = 0.0;        // max |gpu - golden|
+  double temporal_beyond = 0.0;         // max |gpu - golden| - variance_storage_bound(golden): must be <= 0
   double spatial_max_abs = 0.0;         // max |gpu - golden|
-  double spatial_max_scaled = 0.0;      // max |gpu - golden| / scale (the bounded quantity)
+  double spatial_max_scaled = 0.0;      // max (|gpu - golden| - storage bound) / scale (the bounded quantity)
   double spatial_max_rel = 0.0;         // max |gpu - golden| / golden where golden > 1e-3 scale (for the report)
   double uncovered_max_abs = 0.0;       // must be 0
 };
@@ -61,24 +66,28 @@ double spatial_scale(const TemporalOutput& t, const SurfacePlanes& s, int x, int
   return scale;
 }
 
-Errors compare(const FloatPlane& gpu, const FloatPlane& golden, const TemporalOutput& t, const SurfacePlanes& s,
-               const SvgfParams& params) {
+Errors compare(const VulkanContext& context, const FloatPlane& gpu, const FloatPlane& golden,
+               const TemporalOutput& t, const SurfacePlanes& s, const SvgfParams& params) {
   Errors e;
   for (int y = 0; y < s.height(); ++y)
     for (int x = 0; x < s.width(); ++x) {
       const double diff = std::abs(double(gpu.at(x, y)) - double(golden.at(x, y)));
+      // What storing the port's sigma^2 may add (0 with fp32 records).
+      const double storage = variance_storage_bound(context, std::max(gpu.at(x, y), golden.at(x, y)));
       if (!s.covered(x, y)) {
         ++e.uncovered_pixels;
         e.uncovered_max_abs = std::max(e.uncovered_max_abs, diff);
       } else if (t.length.at(x, y) >= float(params.variance_min_history)) {
         ++e.temporal_pixels;
         e.temporal_max_abs = std::max(e.temporal_max_abs, diff);
+        e.temporal_beyond = std::max(e.temporal_beyond, diff - storage);
       } else {
         ++e.spatial_pixels;
         const double scale = spatial_scale(t, s, x, y);
         e.spatial_max_abs = std::max(e.spatial_max_abs, diff);
-        if (scale > 0.0) e.spatial_max_scaled = std::max(e.spatial_max_scaled, diff / scale);
-        else e.spatial_max_scaled = std::max(e.spatial_max_scaled, diff > 0.0 ? 1.0 : 0.0);
+        const double computed = std::max(0.0, diff - storage);  // the error of the computation itself
+        if (scale > 0.0) e.spatial_max_scaled = std::max(e.spatial_max_scaled, computed / scale);
+        else e.spatial_max_scaled = std::max(e.spatial_max_scaled, computed > 0.0 ? 1.0 : 0.0);
         if (golden.at(x, y) > 1e-3 * scale)
           e.spatial_max_rel = std::max(e.spatial_max_rel, diff / double(golden.at(x, y)));
       }
@@ -86,19 +95,20 @@ Errors compare(const FloatPlane& gpu, const FloatPlane& golden, const TemporalOu
   return e;
 }
 
-void check_within_bound(const FloatPlane& gpu, const FloatPlane& golden, const TemporalOutput& t,
-                        const SurfacePlanes& s, const SvgfParams& params) {
+void check_within_bound(const VulkanContext& context, const FloatPlane& gpu, const FloatPlane& golden,
+                        const TemporalOutput& t, const SurfacePlanes& s, const SvgfParams& params) {
   REQUIRE(gpu.width == golden.width);
   REQUIRE(gpu.height == golden.height);
-  const Errors e = compare(gpu, golden, t, s, params);
+  const Errors e = compare(context, gpu, golden, t, s, params);
   INFO("pixels: " << e.temporal_pixels << " temporal, " << e.spatial_pixels << " spatial, " << e.uncovered_pixels
                   << " uncovered");
-  INFO("temporal estimate: max abs error " << e.temporal_max_abs);
+  INFO("temporal estimate: max abs error " << e.temporal_max_abs << ", beyond the storage bound by "
+                                          << e.temporal_beyond);
   INFO("spatial estimate: max abs error " << e.spatial_max_abs << ", max abs error / max mu2' "
                                           << e.spatial_max_scaled << " (bound " << kSpatialTolerance
                                           << "), max relative error " << e.spatial_max_rel);
   INFO("uncovered: max abs error " << e.uncovered_max_abs);
-  CHECK(e.temporal_max_abs == 0.0);
+  CHECK(e.temporal_beyond <= 0.0);
   CHECK(e.spatial_max_scaled <= kSpatialTolerance);
   CHECK(e.uncovered_max_abs == 0.0);
   // Report the measured errors even when the checks pass.
@@ -167,7 +177,7 @@ TEST_CASE("the variance port matches variance_pass on random planes of an odd si
   variance_vulkan(*context, t, s, params);  // warm-up: lavapipe compiles on first use
   double ms = 0.0;
   const FloatPlane gpu = variance_vulkan(*context, t, s, params, &ms);
-  check_within_bound(gpu, golden, t, s, params);
+  check_within_bound(*context, gpu, golden, t, s, params);
   WARN("variance dispatch " << ms << " ms (" << w << "x" << h << ") on " << context->device_name());
   CHECK(ms > 0.0);
 
@@ -179,7 +189,7 @@ TEST_CASE("the variance port matches variance_pass on random planes of an odd si
   for (const int min_history : {0, 1000}) {
     other.variance_min_history = min_history;
     INFO("variance_min_history " << min_history);
-    check_within_bound(variance_vulkan(*context, t, s, other), variance_pass(t, s, other), t, s, other);
+    check_within_bound(*context, variance_vulkan(*context, t, s, other), variance_pass(t, s, other), t, s, other);
   }
   check_no_validation_messages(*context);
 }
@@ -200,10 +210,10 @@ TEST_CASE("the variance port matches variance_pass on real temporal outputs of t
     const FloatPlane golden = variance_pass(t, s, params);
     double ms = 0.0;
     const FloatPlane gpu = variance_vulkan(*context, t, s, params, &ms);
-    check_within_bound(gpu, golden, t, s, params);
+    check_within_bound(*context, gpu, golden, t, s, params);
     WARN("variance dispatch " << ms << " ms (64x36) on " << context->device_name());
     CHECK(ms > 0.0);
-    const Errors e = compare(gpu, golden, t, s, params);
+    const Errors e = compare(*context, gpu, golden, t, s, params);
     spatial_frames += e.spatial_pixels > 0;
     temporal_frames += e.temporal_pixels > 0;
   }

@@ -75,7 +75,8 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
       const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
       if (m.context)
         devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
-                   shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs)";
+                   shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs, " +
+                   illumination_records_name(m.context->illumination_records()) + " illumination records)";
       medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands);
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),

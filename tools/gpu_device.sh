@@ -5,9 +5,10 @@
 #   bash tools/gpu_device.sh [info] [test] [bench]      (default: all three; none of them: build only)
 #     info   the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
 #     test   a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
-#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080, then the ports built for
-#            texel-buffer inputs (RTDR_VK_INPUTS=texel) alone; each frame submitted 10 times back to back and
-#            the last timed, so that the GPU runs at its working clock (rtdr bench --submits)
+#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
+#            inputs, fp16 illumination records), then the ports alone with fp32 records
+#            (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
+#            10 times back to back and the last timed, so that the GPU runs at its working clock (--submits)
 # Logs and bench.csv go to $OUT (default out/device).
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -79,12 +80,14 @@ if wants bench; then
     >"$OUT/clocks.csv" 2>&1 &
   clocks=$!
   for size in 1280x720 1920x1080; do
-    # The ports as a GPU runs them (storage-buffer inputs) against the golden passes, then the texel-buffer build.
+    # The ports as a GPU runs them against the golden passes, then the fp32 records, then the texel-buffer build.
     "$BUILD/app/rtdr" bench --backend cpu,vulkan --scenes pillars --size "$size" --runs 20 --warmup 5 \
       --submits 10 --csv "$OUT/bench_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
-    echo "RTDR_VK_INPUTS=texel:" | tee -a "$OUT/bench.txt"
-    RTDR_VK_INPUTS=texel "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
-      --warmup 5 --submits 10 --csv "$OUT/bench_texel_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+    for variant in RTDR_VK_ILLUMINATION=fp32 RTDR_VK_INPUTS=texel; do
+      echo "$variant:" | tee -a "$OUT/bench.txt"
+      env "$variant" "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
+        --warmup 5 --submits 10 --csv "$OUT/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+    done
   done
   kill "$clocks"
 fi

@@ -63,12 +63,13 @@ inline FloatPlane stored_variance(const VulkanContext& context, FloatPlane plane
 // 0 with fp32 records. With fp16 records a colour value becomes one of the two halves nearest it, as the device
 // chooses (core/shader_shared.h): under 2^-10 relative (11 significant bits), or 2^-24 absolute below 2^-14, which
 // the tests' relative floors (1e-3 and above) turn into less than 2^-10 too; a variance is the square of its
-// standard deviation so stored: (1 + 2^-10)^2 - 1, about 2^-9.
+// standard deviation so stored, which the device's sqrt (a few fp32 ulp: under 2^-21) computed first:
+// (1 + 2^-10 + 2^-21)^2 - 1, about 2^-9.
 inline double colour_storage_error(const VulkanContext& context) {
   return half_records(context) ? std::ldexp(1.0, -10) : 0.0;
 }
 inline double variance_storage_error(const VulkanContext& context) {
-  const double sigma = colour_storage_error(context);
+  const double sigma = half_records(context) ? std::ldexp(1.0, -10) + std::ldexp(1.0, -21) : 0.0;
   return (1.0 + sigma) * (1.0 + sigma) - 1.0;
 }
 // The same for a variance v as an absolute error, the subnormal standard deviations included: a standard deviation

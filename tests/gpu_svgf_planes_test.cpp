@@ -1,0 +1,126 @@
+// Tests of gpu/svgf_planes.cpp: the fp16 illumination records (filters/svgf/planes_shared.h) - the rounding and
+// saturation of half_record_value, the standard deviation behind half_record_variance, and what packing into and
+// unpacking from records of either format gives back - and the choice of records by $RTDR_VK_ILLUMINATION.
+// The tests that need a device skip, with a message, where no Vulkan device exists.
+#include "gpu/svgf_planes.h"
+
+#include "core/error.h"
+#include "core/shader_shared.h"
+
+#include "gpu_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+
+using namespace rtdr;
+using namespace rtdr::gpu_test;
+
+namespace {
+
+// Sets an environment variable for one scope, then restores what was there.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (had_) setenv(name_, old_.c_str(), 1);
+    else unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
+}  // namespace
+
+TEST_CASE("half_record_value rounds to the nearest half, ties to even, and saturates at 65504") {
+  // Halves hold 11 significant bits: between 1 and 2 they are 2^-10 apart.
+  const float ulp = std::ldexp(1.0f, -10);
+  CHECK(half_record_value(1.0f) == 1.0f);
+  CHECK(half_record_value(1.0f + ulp) == 1.0f + ulp);
+  CHECK(half_record_value(1.0f + 0.25f * ulp) == 1.0f);           // nearer 1
+  CHECK(half_record_value(1.0f + 0.75f * ulp) == 1.0f + ulp);     // nearer 1 + ulp
+  CHECK(half_record_value(1.0f + 0.5f * ulp) == 1.0f);            // a tie: to the even significand
+  CHECK(half_record_value(1.0f + 1.5f * ulp) == 1.0f + 2 * ulp);  // a tie: to the even significand
+  CHECK(half_record_value(0.0f) == 0.0f);
+  CHECK(half_record_value(std::ldexp(1.0f, -24)) == std::ldexp(1.0f, -24));  // the smallest subnormal
+  CHECK(half_record_value(std::ldexp(1.0f, -26)) == 0.0f);                   // below half of it
+  CHECK(half_record_value(65504.0f) == 65504.0f);
+  CHECK(half_record_value(65520.0f) == kHalfMax);  // would round to infinity
+  CHECK(half_record_value(1e30f) == kHalfMax);
+  CHECK(half_record_value(-1e30f) == -kHalfMax);
+  CHECK(half_record_value(std::numeric_limits<float>::infinity()) == kHalfMax);
+  // Within 2^-11 relative everywhere in the normal range.
+  for (float v = 7e-5f; v < 6e4f; v *= 1.37f) CHECK(std::abs(half_record_value(v) - v) <= std::ldexp(v, -11));
+}
+
+TEST_CASE("half_record_variance is the square of the stored standard deviation") {
+  CHECK(half_record_variance(0.0f) == 0.0f);
+  CHECK(half_record_variance(4.0f) == 4.0f);  // sigma = 2 is a half
+  const float sigma = half_record_value(std::sqrt(2.0f));
+  CHECK(half_record_variance(2.0f) == sigma * sigma);
+  // Far beyond 65504 (a firefly's variance) while its standard deviation is not; a tiny variance keeps its
+  // relative precision where a half variance would be a subnormal of a few bits or 0.
+  CHECK(half_record_variance(1e9f) == Approx(1e9f).epsilon(2e-3));
+  CHECK(half_record_variance(1e-8f) == Approx(1e-8f).epsilon(2e-3));
+  CHECK(half_record_value(1e-8f) == 0.0f);
+}
+
+TEST_CASE("illumination records hold what half_record_value and half_record_variance say, or the values") {
+  const auto context = validated_context();
+  if (!context) return;
+  RgbPlane colour(3, 2);
+  FloatPlane variance(3, 2);
+  const float values[6] = {0.0f, 1.0f / 3.0f, 2.5f, 1e5f, 7e-6f, 1234.567f};
+  for (int i = 0; i < 6; ++i) {
+    colour.data[i] = glm::vec3(values[i], values[(i + 1) % 6], values[(i + 2) % 6]);
+    variance.data[i] = values[(i + 3) % 6];
+  }
+  const auto buffer = illumination_buffer(*context, 3, 2);
+  CHECK(buffer->format() == (half_records(*context) ? TexelFormat::RGBA16F : TexelFormat::RGBA32F));
+  CHECK(buffer->floats() == (half_records(*context) ? 12u : 24u));  // 8 or 16 bytes a record
+  pack_illumination(colour, &variance, *buffer);
+  const RgbPlane colour_back = unpack_rgb(*buffer, 3, 2);
+  const FloatPlane variance_back = unpack_variance(*buffer, 3, 2);
+  CHECK(colour_back.data == stored_colour(*context, colour).data);
+  CHECK(variance_back.data == stored_variance(*context, variance).data);
+  if (half_records(*context)) CHECK_THROWS_WITH(pack_rgbw(colour, nullptr, *buffer), Catch::Contains("halves"));
+}
+
+TEST_CASE("RTDR_VK_ILLUMINATION picks the illumination records, and a bad value is an error") {
+  std::string reason;
+  if (!VulkanContext::available(&reason)) {
+    WARN("SKIPPED: no Vulkan device: " << reason);
+    return;
+  }
+  {
+    const ScopedEnv env("RTDR_VK_ILLUMINATION", "fp16");
+    CHECK(VulkanContext().illumination_records() == IlluminationRecords::Fp16);
+    // An explicit choice wins over the environment.
+    CHECK(VulkanContext(VulkanOptions{.illumination = IlluminationRecords::Fp32}).illumination_records() ==
+          IlluminationRecords::Fp32);
+  }
+  {
+    const ScopedEnv env("RTDR_VK_ILLUMINATION", "fp32");
+    CHECK(VulkanContext().illumination_records() == IlluminationRecords::Fp32);
+  }
+  {
+    const ScopedEnv env("RTDR_VK_ILLUMINATION", "half");
+    CHECK_THROWS_WITH(VulkanContext(), Catch::Contains("RTDR_VK_ILLUMINATION must be fp32 or fp16, got \"half\""));
+  }
+  {
+    // Unset: fp32 on a CPU device, fp16 on a GPU.
+    const ScopedEnv env("RTDR_VK_ILLUMINATION", "");
+    const VulkanContext context;
+    CHECK(context.illumination_records() ==
+          (context.cpu_device() ? IlluminationRecords::Fp32 : IlluminationRecords::Fp16));
+  }
+}

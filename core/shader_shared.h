@@ -43,34 +43,34 @@ RTDR_SHARED_CONST float kHalfMax = 65504.0f;
 //                       through the texture units at a fraction of the rate of plain loads (docs/performance.md).
 // The host binds each input as the kind its shader was built for (gpu/svgf_shaders.h, ShaderInputs).
 #ifdef RTDR_STORAGE_INPUTS
-#define RTDR_INPUT_RGBA(b, name)                                                                      \
-  layout(std430, set = 0, binding = b) readonly buffer name##_records { vec4 name##_data[]; }; \
+// A read-only std430 array name##_data of `element`s.
+#define RTDR_INPUT_ARRAY(b, name, element) \
+  layout(std430, set = 0, binding = b) readonly buffer name##_records { element name##_data[]; };
+#define RTDR_INPUT_RGBA(b, name) \
+  RTDR_INPUT_ARRAY(b, name, vec4) \
   vec4 name(int i) { return name##_data[i]; }
-#define RTDR_INPUT_RG(b, name)                                                                        \
-  layout(std430, set = 0, binding = b) readonly buffer name##_records { vec2 name##_data[]; }; \
+#define RTDR_INPUT_RG(b, name)    \
+  RTDR_INPUT_ARRAY(b, name, vec2) \
   vec4 name(int i) { return vec4(name##_data[i], 0.0, 1.0); }
-#define RTDR_INPUT_UINT(b, name)                                                                      \
-  layout(std430, set = 0, binding = b) readonly buffer name##_records { uint name##_data[]; }; \
+#define RTDR_INPUT_UINT(b, name)  \
+  RTDR_INPUT_ARRAY(b, name, uint) \
   uvec4 name(int i) { return uvec4(name##_data[i], 0u, 0u, 1u); }
-#define RTDR_INPUT_RGBA16F(b, name)                                                                    \
-  layout(std430, set = 0, binding = b) readonly buffer name##_records { uvec2 name##_data[]; }; \
-  vec4 name(int i) {                                                                             \
-    const uvec2 halves = name##_data[i];                                                         \
-    return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y));                             \
+#define RTDR_INPUT_RGBA16F(b, name)                                    \
+  RTDR_INPUT_ARRAY(b, name, uvec2)                                     \
+  vec4 name(int i) {                                                   \
+    const uvec2 halves = name##_data[i];                               \
+    return vec4(unpackHalf2x16(halves.x), unpackHalf2x16(halves.y));   \
   }
 #else
-#define RTDR_INPUT_RGBA(b, name)                                                       \
-  layout(set = 0, binding = b, rgba32f) uniform readonly imageBuffer name##_texels; \
-  vec4 name(int i) { return imageLoad(name##_texels, i); }
-#define RTDR_INPUT_RG(b, name)                                                       \
-  layout(set = 0, binding = b, rg32f) uniform readonly imageBuffer name##_texels; \
-  vec4 name(int i) { return imageLoad(name##_texels, i); }
-#define RTDR_INPUT_UINT(b, name)                                                      \
-  layout(set = 0, binding = b, r32ui) uniform readonly uimageBuffer name##_texels; \
-  uvec4 name(int i) { return imageLoad(name##_texels, i); }
-#define RTDR_INPUT_RGBA16F(b, name)                                                     \
-  layout(set = 0, binding = b, rgba16f) uniform readonly imageBuffer name##_texels; \
-  vec4 name(int i) { return imageLoad(name##_texels, i); }
+// A storage texel buffer of `format`, viewed as `image` (imageBuffer or uimageBuffer), whose whole texels name(i)
+// loads as `texel`s.
+#define RTDR_INPUT_TEXELS(b, name, format, image, texel)                    \
+  layout(set = 0, binding = b, format) uniform readonly image name##_texels; \
+  texel name(int i) { return imageLoad(name##_texels, i); }
+#define RTDR_INPUT_RGBA(b, name) RTDR_INPUT_TEXELS(b, name, rgba32f, imageBuffer, vec4)
+#define RTDR_INPUT_RG(b, name) RTDR_INPUT_TEXELS(b, name, rg32f, imageBuffer, vec4)
+#define RTDR_INPUT_UINT(b, name) RTDR_INPUT_TEXELS(b, name, r32ui, uimageBuffer, uvec4)
+#define RTDR_INPUT_RGBA16F(b, name) RTDR_INPUT_TEXELS(b, name, rgba16f, imageBuffer, vec4)
 #endif
 
 // How a port writes an output plane: RTDR_OUTPUT_RGBA(binding, name) declares a write-only std430 array of vec4

@@ -27,9 +27,10 @@ void check_fits(const GpuBuffer& buffer, size_t pixels, size_t values, const cha
                 std::to_string(pixels) + " records of " + std::to_string(values) + (is_half(buffer) ? " halves" : ""));
 }
 
-// The bits of the half an fp16 record stores for v: saturated at +-kHalfMax, as RTDR_OUTPUT_RGBA16F does, then
-// rounded to the nearest half, ties to even (Imath).
-uint16_t half_bits(float v) { return Imath::half(std::clamp(v, -kHalfMax, kHalfMax)).bits(); }
+// The half an fp16 record stores for v: v saturated at +-kHalfMax, as RTDR_OUTPUT_RGBA16F does, then rounded to
+// the nearest half, ties to even (Imath).
+Imath::half to_half(float v) { return Imath::half(std::clamp(v, -kHalfMax, kHalfMax)); }
+uint16_t half_bits(float v) { return to_half(v).bits(); }
 
 // The four values (a, b, c, d) as one RGBA16F texel, in packHalf2x16's layout: two 32-bit words, each holding its
 // first value in the low 16 bits.
@@ -49,7 +50,7 @@ float record_value(const GpuBuffer& buffer, size_t values, size_t i, size_t valu
 
 }  // namespace
 
-float half_record_value(float v) { return float(Imath::half(Imath::half::FromBits, half_bits(v))); }
+float half_record_value(float v) { return float(to_half(v)); }
 
 float half_record_variance(float variance) {
   const float sigma = half_record_value(std::sqrt(variance));

@@ -79,6 +79,13 @@ RTDR_SHARED_CONST float kHalfMax = 65504.0f;
 // The conversion gives one of the two halves nearest v, which one the device chooses (the Vulkan spec's
 // floating-point conversion rule): a relative error under 2^-10, or an absolute one under 2^-24 below the
 // smallest normal half (2^-14).
+// Subnormal halves: Vulkan also lets a device flush a subnormal to 0 wherever a shader converts to or from fp16,
+// unless the shader asks for DenormPreserve (an optional property). The fp16 records keep them (a colour of 1e-5
+// stays 1e-5) and their error bounds assume the device does too, as lavapipe does; tests/gpu_svgf_planes_test.cpp
+// checks it on the device at hand, and a device that flushes should run fp32 records. Writing 0 below 2^-14
+// ourselves would make every device agree, but it cost accuracy where SVGF is sensitive: the luminance weight
+// [SVGF17 Eq. 5] compares dark pixels at the scale of its epsilon (1e-4), and the fp16 pipeline's colour went from
+// 1.6e-3 to 1.25e-2 off the golden one on falling-light (docs/performance.md, "Packed illumination").
 #define RTDR_OUTPUT_RGBA(b, name)                                                                      \
   layout(std430, set = 0, binding = b) writeonly buffer name##_records { vec4 name##_data[]; }; \
   void name(int i, vec4 v) { name##_data[i] = v; }

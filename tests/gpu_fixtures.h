@@ -62,9 +62,10 @@ inline FloatPlane stored_variance(const VulkanContext& context, FloatPlane plane
 // The largest relative error of storing an illumination colour value, and a variance, in the context's records:
 // 0 with fp32 records. With fp16 records a colour value becomes one of the two halves nearest it, as the device
 // chooses (core/shader_shared.h): under 2^-10 relative (11 significant bits), or 2^-24 absolute below 2^-14, which
-// the tests' relative floors (1e-3 and above) turn into less than 2^-10 too; a variance is the square of its
-// standard deviation so stored, which the device's sqrt (a few fp32 ulp: under 2^-21) computed first:
-// (1 + 2^-10 + 2^-21)^2 - 1, about 2^-9.
+// the tests' relative floors (1e-3 and above) turn into less than 2^-10 too. That holds on a device that keeps
+// subnormal halves, which Vulkan does not require (gpu_svgf_planes_test checks the device at hand). A variance is
+// the square of its standard deviation so stored, which the device's sqrt (a few fp32 ulp: under 2^-21) computed
+// first: (1 + 2^-10 + 2^-21)^2 - 1, about 2^-9.
 inline double colour_storage_error(const VulkanContext& context) {
   return half_records(context) ? std::ldexp(1.0, -10) : 0.0;
 }

@@ -1,11 +1,13 @@
 // Tests of gpu/svgf_planes.cpp: the fp16 illumination records (filters/svgf/planes_shared.h) - the rounding and
 // saturation of half_record_value, the standard deviation behind half_record_variance, and what packing into and
-// unpacking from records of either format gives back - and the choice of records by $RTDR_VK_ILLUMINATION.
+// unpacking from records of either format gives back, that the device keeps the subnormal halves they may hold -
+// and the choice of records by $RTDR_VK_ILLUMINATION.
 // The tests that need a device skip, with a message, where no Vulkan device exists.
 #include "gpu/svgf_planes.h"
 
 #include "core/error.h"
 #include "core/shader_shared.h"
+#include "gpu/atrous_gpu.h"
 
 #include "gpu_fixtures.h"
 
@@ -93,6 +95,32 @@ TEST_CASE("illumination records hold what half_record_value and half_record_vari
   CHECK(colour_back.data == stored_colour(*context, colour).data);
   CHECK(variance_back.data == stored_variance(*context, variance).data);
   if (half_records(*context)) CHECK_THROWS_WITH(pack_rgbw(colour, nullptr, *buffer), Catch::Contains("halves"));
+}
+
+TEST_CASE("the device keeps subnormal halves, which the fp16 records' bounds rely on") {
+  // Vulkan lets a device flush a subnormal to 0 wherever a shader converts to or from fp16 (core/shader_shared.h).
+  // The fp16 ports' bounds assume it does not (gpu_fixtures.h). The a-trous port passes a pixel without a surface
+  // through, so its records must come back as they went in: read by RTDR_INPUT_ILLUMINATION, stored by
+  // RTDR_OUTPUT_ILLUMINATION.
+  const auto context = validated_context();
+  if (!context) return;
+  const float tiny = std::ldexp(1.0f, -24);  // the smallest subnormal half; 2^-14 is the smallest normal one
+  const float values[] = {tiny, 3.0f * tiny, 1023.0f * tiny, std::ldexp(1.0f, -15) + tiny, 0.25f, 0.0f};
+  const int w = 6, h = 1;
+  RgbPlane colour(w, h);
+  FloatPlane variance(w, h);
+  SurfacePlanes s = blank_surface(w, h);
+  for (int i = 0; i < w; ++i) {
+    colour.data[i] = glm::vec3(values[i], values[(i + 1) % w], values[(i + 2) % w]);
+    variance.data[i] = values[(i + 3) % w] * values[(i + 3) % w];  // the standard deviation is one of the values
+    s.mesh.data[i] = kInvalidId;
+  }
+  const AtrousOutput gpu = atrous_level_vulkan(*context, colour, variance, s, 0, SvgfParams{});
+  INFO("device " << context->device_name() << ": a value that comes back as 0 was flushed; fp16 records need a "
+       "device that keeps subnormal halves, elsewhere use RTDR_VK_ILLUMINATION=fp32");
+  CHECK(gpu.color.data == stored_colour(*context, colour).data);
+  CHECK(gpu.variance.data == stored_variance(*context, variance).data);
+  check_no_validation_messages(*context);
 }
 
 TEST_CASE("RTDR_VK_ILLUMINATION picks the illumination records, and a bad value is an error") {

@@ -19,10 +19,11 @@ namespace {
 bool is_half(const GpuBuffer& buffer) { return buffer.format() == TexelFormat::RGBA16F; }
 
 // The buffer holds exactly `pixels` records of `values` values: floats, or halves in an RGBA16F buffer (two to a
-// 32-bit word).
+// 32-bit word). An empty plane fits the one texel plane_buffer gives it.
 void check_fits(const GpuBuffer& buffer, size_t pixels, size_t values, const char* what) {
   const size_t words = is_half(buffer) ? pixels * values / 2 : pixels * values;
-  if ((is_half(buffer) && values != 4) || (buffer.floats() != words && !(pixels == 0 && buffer.floats() == 1)))
+  const bool empty_fits = pixels == 0 && buffer.floats() == texel_floats(buffer.format());
+  if ((is_half(buffer) && values != 4) || (buffer.floats() != words && !empty_fits))
     throw Error(std::string(what) + ": a buffer of " + std::to_string(buffer.floats()) + " words cannot hold " +
                 std::to_string(pixels) + " records of " + std::to_string(values) + (is_half(buffer) ? " halves" : ""));
 }

@@ -97,6 +97,28 @@ TEST_CASE("illumination records hold what half_record_value and half_record_vari
   if (half_records(*context)) CHECK_THROWS_WITH(pack_rgbw(colour, nullptr, *buffer), Catch::Contains("halves"));
 }
 
+TEST_CASE("an empty plane packs into and unpacks from the one texel plane_buffer gives it, a larger one throws") {
+  const auto context = validated_context();
+  if (!context) return;
+  for (const TexelFormat format : {TexelFormat::RGBA32F, TexelFormat::RGBA16F, TexelFormat::RG32F}) {
+    const auto buffer = plane_buffer(*context, 0, 0, format);
+    CHECK(buffer->floats() == texel_floats(format));
+  }
+  const auto rgba = plane_buffer(*context, 0, 0, TexelFormat::RGBA32F);
+  const auto illumination = illumination_buffer(*context, 0, 0);
+  const auto rg = plane_buffer(*context, 0, 0, TexelFormat::RG32F);
+  const auto ids = plane_buffer(*context, 0, 0, TexelFormat::R32UI);
+  CHECK_NOTHROW(pack_rgbw(RgbPlane(0, 0), nullptr, *rgba));
+  CHECK_NOTHROW(pack_illumination(RgbPlane(0, 0), nullptr, *illumination));
+  CHECK_NOTHROW(pack_vec2(Vec2Plane(0, 0), *rg));
+  CHECK_NOTHROW(pack_ids(UIntPlane(0, 0), *ids));
+  CHECK(unpack_rgb(*illumination, 0, 0).data.empty());
+  CHECK(unpack_variance(*illumination, 0, 0).data.empty());
+  // One texel is no room for two.
+  CHECK_THROWS_WITH(pack_rgbw(RgbPlane(2, 1), nullptr, *rgba), Catch::Contains("cannot hold 2 records"));
+  CHECK_THROWS_WITH(unpack_rgb(*illumination, 2, 1), Catch::Contains("cannot hold 2 records"));
+}
+
 TEST_CASE("the device keeps subnormal halves, which the fp16 records' bounds rely on") {
   // Vulkan lets a device flush a subnormal to 0 wherever a shader converts to or from fp16 (core/shader_shared.h).
   // The fp16 ports' bounds assume it does not (gpu_fixtures.h). The a-trous port passes a pixel without a surface

@@ -1,7 +1,7 @@
 // docs/equations.md is a promise: for every equation, the function that implements it, the test that checks
-// it and (later) the shader that ports it. This test keeps the promise true: every file it names exists,
-// every function named is defined in its file, every quoted test case is in its test file, and the
-// implementing file cites the equation it claims to implement.
+// it and the shaders that port it. This test keeps the promise true: every file it names exists, every function
+// named is defined in its file, every quoted test case is in its test file, and the implementing file and every
+// shader named cite the equation they claim to implement.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -89,8 +89,14 @@ TEST_CASE("docs/equations.md names functions, tests and shaders that exist, in f
       INFO("test case \"" << quoted[1].str() << "\" in " << test[0]);
       CHECK(read(test_file).find(quoted[1].str()) != std::string::npos);
     }
-    // Shader cell: a file that exists, or "-" until the port is written.
-    const std::vector<std::string> shader = code_spans(row.shader);
-    if (!shader.empty()) CHECK(fs::exists(fs::path(RTDR_SOURCE_DIR) / shader[0]));
+    // Shader cell: "-" until the port is written, else the shaders (`*.comp`) that port it, each of which exists
+    // and cites the equation as the golden file does.
+    for (const std::string& span : code_spans(row.shader)) {
+      if (!span.ends_with(".comp")) continue;
+      const fs::path shader = fs::path(RTDR_SOURCE_DIR) / span;
+      INFO("shader " << span);
+      REQUIRE(fs::exists(shader));
+      CHECK(read(shader).find(citation) != std::string::npos);
+    }
   }
 }

@@ -1,20 +1,22 @@
 // One level of SVGF's edge-avoiding a-trous wavelet filter [SVGF17 Sec. 4.3, Eq. 1-5] with its variance prefilter
 // [SVGF17 Sec. 4.4], the Vulkan port of atrous_pixel (atrous.cpp) and prefilter_variance_pixel (prefilter.cpp),
-// line for line (read_centre, tap_weight and centre_weight likewise):
+// line for line (read_centre, tap_weight and centre_weight likewise). One difference in where things happen:
+// the golden read_centre reads g3x3(Var) from the plane atrous_level prefilters first, for the whole frame; this
+// one computes it for its pixel (and, with keep_prefiltered set, main() computes it once more to write it out).
 //   g3x3(Var(c_i))(p) = sum g(dx) g(dy) Var(c_i)(p + (dx, dy)), clamped borders  (Eq. 5's prefilter)
 //   c_{i+1}(p)        = sum h w c_i(q) / sum h w
 //   Var(c_{i+1}(p))   = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2
-// Same skip rules: taps outside the image and taps without a surface add nothing (here: with w = 0), a pixel
-// without a surface passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
+// Same skip rules: taps outside the image and taps without a surface add nothing (here: with w = 0), a pixel without a
+// surface passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
 // one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
-// [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a
-// shared-memory tile measured 2x slower than the gather, and on an H100 2.3x slower at steps 1 and 2, where its
-// shared memory also slowed the untiled levels 3x (docs/performance.md). The kernel size is a specialization
-// constant, so the compiler knows the taps and unrolls their loops (half the instructions on lavapipe).
+// [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a shared-memory
+// tile measured 2x slower than the gather, and on an H100 2.3x slower at steps 1 and 2, where its shared memory also
+// slowed the untiled levels 3x (docs/performance.md). The kernel size is a specialization constant, so the compiler
+// knows the taps and unrolls their loops (half the instructions on lavapipe).
 //   in:  bindings 0-1: illumination (c_i, Var(c_i)) of the direct and the indirect stream; 2: surface; 3: depth
 //        gradient;
 //   out: bindings 4-5: illumination (c_{i+1}, Var(c_{i+1})); 6: g3x3(Var(c_i)) of both streams, written only
-//        when p.keep_prefiltered is set. Layout: planes_shared.h and atrous_shared.h.
+//        when frame.keep_prefiltered is set. Layout: planes_shared.h and atrous_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
@@ -37,15 +39,15 @@ layout(push_constant) uniform Push { AtrousPush push; };
 
 // GPU only: the push constants, copied once at the top of main(). lavapipe loads a push constant lane by lane at
 // each use; the copy is loaded once.
-AtrousPush p;
+AtrousPush frame;
 
 // The kernel size, 5 or 3 (SvgfParams::kernel_size), fixed when the host creates the pipeline (a specialization
 // constant): the compiler knows the taps and unrolls the loops over them. 5 is only the unspecialized value.
 layout(constant_id = kAtrousKernelSizeConstant) const int kernel_size = 5;
 
 // Plane accessors (filters/image.h's at, inside): pixel (x, y) at y * width + x.
-int index_of(int x, int y) { return y * int(p.width) + x; }
-bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(p.width) && y < int(p.height); }
+int index_of(int x, int y) { return y * int(frame.width) + x; }
+bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.width) && y < int(frame.height); }
 
 // The two streams side by side: component 0 direct, 1 indirect.
 struct Illumination {
@@ -84,7 +86,7 @@ vec2 prefilter_variance_pixel(int x, int y) {
       // The binomial weight of this tap, g(dx) g(dy): 1/4 at the centre, 1/8 at the edges, 1/16 at the corners.
       const float g = kGaussian3[dx + 1] * kGaussian3[dy + 1];
       // The neighbour's variance, the border pixel where (x + dx, y + dy) falls outside.
-      const int qx = clamp(x + dx, 0, int(p.width) - 1), qy = clamp(y + dy, 0, int(p.height) - 1);
+      const int qx = clamp(x + dx, 0, int(frame.width) - 1), qy = clamp(y + dy, 0, int(frame.height) - 1);
       const Illumination q = illumination_at(index_of(qx, qy));
       // GPU only: `precise` keeps g * var_q and the sum two roundings, as in the golden function.
       sum += g * vec2(q.stream[0].w, q.stream[1].w);
@@ -122,8 +124,8 @@ struct Centre {
 Centre read_centre(int x, int y, vec4 s, Illumination c) {
   const vec2 var_g3x3 = prefilter_variance_pixel(x, y);
   const vec2 l = vec2(luminance(c.stream[0].rgb), luminance(c.stream[1].rgb));
-  const vec2 l_scale = vec2(luminance_scale(var_g3x3[0], p.sigma_l, p.epsilon),
-                            luminance_scale(var_g3x3[1], p.sigma_l, p.epsilon));
+  const vec2 l_scale = vec2(luminance_scale(var_g3x3[0], frame.sigma_l, frame.epsilon),
+                            luminance_scale(var_g3x3[1], frame.sigma_l, frame.epsilon));
   return Centre(x, y, s.w, depth_grad(index_of(x, y)).xy, s.xyz, l, var_g3x3, l_scale);
 }
 
@@ -133,21 +135,21 @@ vec2 tap_weight(Centre c, int qx, int qy, vec4 s_q, Illumination c_q) {
   // p - q in pixels, at the tap's real distance (the step 2^i included) [SVGF17 Eq. 3].
   const vec2 offset_pq = vec2(float(c.x - qx), float(c.y - qy));
   const float z_q = s_q.w;
-  const float a_z = depth_exponent(c.z, z_q, c.grad_z, offset_pq, p.sigma_z, p.epsilon);
+  const float a_z = depth_exponent(c.z, z_q, c.grad_z, offset_pq, frame.sigma_z, frame.epsilon);
   const float cos_pq = max(0.0f, dot3(c.n, s_q.xyz));
   const vec2 l_q = vec2(luminance(c_q.stream[0].rgb), luminance(c_q.stream[1].rgb));
   const vec2 a_l = abs(c.l - l_q) / c.l_scale;
   // w = w_z w_n w_l [SVGF17 Eq. 2] = exp(sigma_n ln cos - a_z - a_l): one exp and one log for the three weights.
   // sigma_n ln cos - a_z is the same for both streams; the subtractions keep the golden order.
-  precise float exponent_zn = p.sigma_n * log(cos_pq) - a_z;
+  precise float exponent_zn = frame.sigma_n * log(cos_pq) - a_z;
   precise vec2 exponent = exponent_zn - a_l;
   // w_n = 0 when facing away. GPU only: a select, not an early return (see main()).
   return cos_pq > 0.0f ? exp(exponent) : vec2(0.0f);
 }
 
-// h(k), the 1D kernel weight of tap k (atrous_kernel): the B3 spline (1/16, 1/4, 3/8, 1/4, 1/16) for
-// kernel_size 5, the box (1/3, 1/3, 1/3) for 3. GPU only: selects, not a table, which lavapipe would keep in
-// per-invocation memory; with the taps unrolled they fold to constants.
+// h(k), the 1D kernel weight of tap k (atrous_kernel) [SVGF17 Eq. 1, ASVGF18 Sec. 4]: the B3 spline (1/16, 1/4, 3/8,
+// 1/4, 1/16) for kernel_size 5, the box (1/3, 1/3, 1/3) for 3. GPU only: selects, not a table, which lavapipe would
+// keep in per-invocation memory; with the taps unrolled they fold to constants.
 float kernel_weight(int k) {
   if (kernel_size != 5) return kAtrousBox;
   return k == 0 ? kAtrousB3Centre : (abs(k) == 1 ? kAtrousB3Inner : kAtrousB3Outer);
@@ -157,14 +159,14 @@ float kernel_weight(int k) {
 float centre_weight() { return 1.0f; }
 
 void main() {
-  p = push;  // the push constants, read once (see above)
+  frame = push;  // the push constants, read once (see above)
   // This invocation's pixel; the last tiles overhang the frame.
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
-  if (x >= int(p.width) || y >= int(p.height)) return;
+  if (x >= int(frame.width) || y >= int(frame.height)) return;
   const int i = index_of(x, y);
   const vec4 s_p = surface(i);
   const Illumination c_p = illumination_at(i);
-  if (p.keep_prefiltered != 0u) prefiltered_out[i] = prefilter_variance_pixel(x, y);
+  if (frame.keep_prefiltered != 0u) prefiltered_out[i] = prefilter_variance_pixel(x, y);
 
   // No surface, nothing to compare with: the input passes through.
   if (!has_surface(s_p)) {
@@ -174,7 +176,7 @@ void main() {
   }
   // atrous_kernel (atrous.cpp): the host has checked kernel_size is 5 or 3; the weights are atrous_shared.h's.
   const int radius = kernel_size == 5 ? 2 : 1;
-  const int step = 1 << p.level;  // 2^i: the taps' spacing at level i
+  const int step = 1 << frame.level;  // 2^i: the taps' spacing at level i
   const Centre centre = read_centre(x, y, s_p, c_p);
 
   // GPU only: `precise` on the sums keeps each product and add a separate rounding, as in the golden function.
@@ -186,13 +188,14 @@ void main() {
   [[unroll]] for (int j = -radius; j <= radius; ++j)
     [[unroll]] for (int k = -radius; k <= radius; ++k) {
       const int qx = x + k * step, qy = y + j * step;  // the tap q, 2^i (k, j) away from p
-      // The golden code skips a tap off the image (sum h w renormalises over the taps that remain) and a tap
-      // without a surface (nothing to filter there). GPU only: such a tap gets w = 0 instead, read at the
-      // nearest pixel of the image, and adds zeros to the sums: the same sums, since the planes hold finite
-      // values (the inputs are checked for NaN and Inf). lavapipe runs every branch's body for all lanes
-      // anyway, and a select costs less than the masked updates of the sums (4% fewer instructions).
+      // The golden code skips a tap off the image (sum h w renormalises over the taps that remain) and a tap without a
+      // surface (nothing to filter there). GPU only: such a tap gets w = 0 instead, read at the nearest pixel of the
+      // image, and adds zeros to the sums: the same sums, since the planes hold finite values (a precondition of the
+      // ports, gpu/atrous_gpu.h; rtdr filter rejects NaN and Inf in its input frames, app/sequence.cpp). lavapipe runs
+      // every branch's body for all lanes anyway, and a select costs less than the masked updates of the sums (4% fewer
+      // instructions).
       const bool in_image = inside(qx, qy);
-      const int q = index_of(clamp(qx, 0, int(p.width) - 1), clamp(qy, 0, int(p.height) - 1));
+      const int q = index_of(clamp(qx, 0, int(frame.width) - 1), clamp(qy, 0, int(frame.height) - 1));
       const vec4 s_q = surface(q);
       const bool skipped = !in_image || !has_surface(s_q);
       const Illumination c_q = illumination_at(q);

@@ -41,7 +41,8 @@ RTDR_SHARED_CONST float kHalfMax = 65504.0f;
 //                       VulkanContext enables.
 //   <stem>_storage.spv  (RTDR_STORAGE_INPUTS) storage buffers, read as arrays. On a GPU a 16-byte texel goes
 //                       through the texture units at a fraction of the rate of plain loads (docs/performance.md).
-// The host binds each input as the kind its shader was built for (gpu/svgf_shaders.h, ShaderInputs).
+// The host binds each input as the kind its shader was built for (ShaderInputs, gpu/vulkan_context.h; the
+// bindings' kinds: gpu/svgf_shaders.cpp).
 #ifdef RTDR_STORAGE_INPUTS
 // A read-only std430 array name##_data of `element`s.
 #define RTDR_INPUT_ARRAY(b, name, element) \

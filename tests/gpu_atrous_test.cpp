@@ -17,7 +17,8 @@
 // fp16 illumination records (the ports' _fp16 builds): the level reads colour and variance as the records hold
 // them, so the golden level runs on those (golden_level); the port's fp32 arithmetic is then within the bound
 // above, and it stores its result as halves: the colour bound grows by 2^-10 and the variance bound by
-// (1 + 2^-10)^2 - 1 (gpu_fixtures.h). The prefiltered variance is written as fp32 and keeps its bound.
+// (1 + 2^-10 + 2^-21)^2 - 1, a rounded sqrt squared (gpu_fixtures.h). The prefiltered variance is written as fp32
+// and keeps its bound.
 #include "gpu/atrous_gpu.h"
 
 #include "core/color.h"
@@ -130,7 +131,7 @@ TEST_CASE("the port matches atrous_level on random planes of an odd size, levels
   if (!context) return;
   INFO("device: " << context->device_name());
   std::mt19937 rng(7);
-  const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const int w = 41, h = 29;  // a multiple of neither workgroup shape (8x8, 32x2): the last tiles overhang
   const SurfacePlanes s = random_surface(rng, w, h);
   const RgbPlane colour = random_plane(rng, w, h, 0.0f, 4.0f);
   const FloatPlane variance = random_variance(rng, w, h);

@@ -52,7 +52,7 @@ TEST_CASE("the port matches remodulate on random planes of an odd size, black al
   if (!context) return;
   INFO("device: " << context->device_name());
   std::mt19937 rng(11);
-  const int w = 37, h = 23;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const int w = 37, h = 23;  // a multiple of neither workgroup shape (8x8, 32x2): the last tiles overhang
   const RgbPlane direct = random_plane(rng, w, h, 0.0f, 50.0f), indirect = random_plane(rng, w, h, 0.0f, 50.0f);
   const RgbPlane emission = random_plane(rng, w, h, 0.0f, 5.0f);
   RgbPlane albedo = random_plane(rng, w, h, 0.0f, 1.0f);

@@ -71,7 +71,7 @@ TEST_CASE("the port matches taa_pass on random planes of an odd size, with every
   INFO("device: " << context->device_name());
   std::mt19937 rng(23);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), half(-0.5f, 0.5f);
-  const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const int w = 41, h = 29;  // a multiple of neither workgroup shape (8x8, 32x2): the last tiles overhang
   const RgbPlane current = random_plane(rng, w, h, 0.0f, 1.0f), history = random_plane(rng, w, h, 0.0f, 1.0f);
   const Vec2Plane motion = random_motion(rng, w, h);
 

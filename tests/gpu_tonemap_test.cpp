@@ -43,7 +43,7 @@ TEST_CASE("the port matches tonemap on random HDR planes of an odd size, black a
   if (!context) return;
   INFO("device: " << context->device_name());
   std::mt19937 rng(17);
-  const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const int w = 41, h = 29;  // a multiple of neither workgroup shape (8x8, 32x2): the last tiles overhang
   RgbPlane colour = random_plane(rng, w, h, 0.0f, 10.0f);
   for (size_t i = 0; i < colour.data.size(); i += 7) colour.data[i] = glm::vec3(0.0f);           // black: L_w = 0
   for (size_t i = 3; i < colour.data.size(); i += 11) colour.data[i] = glm::vec3(0.0f, 0.0f, 10.0f);  // saturated

@@ -18,7 +18,7 @@
 //   d = 6.1e-5, 6 d = 3.7e-4; kSpatialTolerance = 4e-4 is that bound. The measured errors (printed) are far below.
 // - fp16 illumination records (the ports' _fp16 builds): the pass reads only the moments, which stay fp32, and
 //   stores sigma^2 as the square of a half standard deviation (filters/svgf/planes_shared.h): each bound above
-//   grows by that storage error, variance_storage_bound (gpu_fixtures.h): a relative (1 + 2^-10)^2 - 1 of
+//   grows by that storage error, variance_storage_bound (gpu_fixtures.h): a relative (1 + 2^-10 + 2^-21)^2 - 1 of
 //   sigma^2, plus what a subnormal standard deviation (below 2^-14) may lose. A 0 stays 0.
 #include "gpu/variance_gpu.h"
 
@@ -167,7 +167,7 @@ TEST_CASE("the variance port matches variance_pass on random planes of an odd si
   if (!context) return;
   INFO("device: " << context->device_name());
   std::mt19937 rng(4242);
-  const int w = 41, h = 29;  // neither a multiple of the 8x8 workgroup: the last tiles overhang
+  const int w = 41, h = 29;  // a multiple of neither workgroup shape (8x8, 32x2): the last tiles overhang
   const SurfacePlanes s = random_surface(rng, w, h);
   const TemporalOutput t = random_temporal(rng, w, h);
   const SvgfParams params;

@@ -1,7 +1,7 @@
-// What one a-trous level's C++ (atrous.cpp, prefilter.cpp, gpu/atrous_gpu.cpp, gpu/svgf_gpu.cpp) and GLSL
-// (atrous.comp) share, written once: the push-constant block, the a-trous kernel weights (atrous.cpp's atrous_kernel
-// takes them from here) and the prefilter's binomial weights. Both compilers include this file; GLSL has the C
-// preprocessor, and core/shader_shared.h maps GLSL's types to C++.
+// What one a-trous level's C++ (atrous.cpp, prefilter.cpp, gpu/atrous_gpu.cpp, gpu/svgf_shaders.cpp,
+// gpu/svgf_vulkan.cpp) and GLSL (atrous.comp) share, written once: the push-constant block, the a-trous kernel weights
+// (atrous.cpp's atrous_kernel takes them from here) and the prefilter's binomial weights. Both compilers include this
+// file; GLSL has the C preprocessor, and core/shader_shared.h maps GLSL's types to C++.
 //
 // Buffer layout (filters/svgf/planes_shared.h): bindings 0-1 the illumination records (c_i, Var(c_i)) of the direct
 // and the indirect stream, 2 the surface record, 3 the depth gradient, all inputs (RTDR_INPUT_*); 4-5 the records

@@ -4,7 +4,8 @@
 // Every plane is row-major, pixel (x, y) at texel y * width + x, and fp32, except the illumination records of the
 // fp16 builds (below). Inputs are read through core/shader_shared.h's RTDR_INPUT_* (texel buffers on lavapipe,
 // storage buffers on a GPU); outputs are std430 arrays of the same texels. Several planes share one texel, so
-// that a tap costs one fetch per record rather than one per plane (docs/performance.md, "Lavapipe"):
+// that a tap costs one fetch per record rather than one per plane (docs/performance.md, "Filters: the Vulkan
+// ports"):
 //   surface      RGBA32F  (n.x, n.y, n.z, z): world normal and linear view depth; z = kNoSurfaceDepth (-1) where
 //                         the pixel has no surface (a visible surface always has z > 0, in front of the camera)
 //   illumination RGBA32F  (r, g, b, variance): one stream's colour and its variance estimate; the noisy input and

@@ -22,9 +22,11 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..15 above): 12 texel buffers and 4 storage buffers, within every Vulkan device's
-// per-stage minimums (16 sampled, 4 storage). Built for storage inputs (core/shader_shared.h) all 16 are storage
-// buffers, which the context picks only where the device allows that many (gpu/vulkan_context.h).
+// The number of bindings (0..15 above): 12 storage texel buffers and 4 storage buffers. Vulkan guarantees only 4
+// of each per stage (maxPerStageDescriptorStorageImages, which counts storage texel buffers, and
+// maxPerStageDescriptorStorageBuffers). Built for storage inputs (core/shader_shared.h) all 16 are storage
+// buffers. The context picks either build only where the device allows that many (gpu/vulkan_context.cpp,
+// resolve_inputs).
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalTexelBindings = 12;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalStorageBindings = 4;
 

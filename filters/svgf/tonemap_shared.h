@@ -1,7 +1,6 @@
 // What tone mapping's C++ (tonemap.cpp, gpu/tonemap_gpu.cpp) and GLSL (tonemap.comp) share, written once:
 // the push-constant block and (from core/color_shared.h) the Rec. 709 luminance weights.
-// Both compilers include this file; GLSL has the C preprocessor, and the #ifdef __cplusplus block maps GLSL's
-// `uint` to C++.
+// Both compilers include this file; GLSL has the C preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (layout: planes_shared.h): 0 the HDR colour record, an input (RTDR_INPUT_*); 1 the display colour written.
 #ifndef RTDR_FILTERS_SVGF_TONEMAP_SHARED_H

@@ -3,7 +3,8 @@
 // has the C preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (layout: filters/svgf/planes_shared.h): 0 the current colour record, 1 the history colour record (one
-// unread texel when has_history is 0), 2 the motion (RG32F), texel buffers; 3 the output colour record written.
+// unread texel when has_history is 0), 2 the motion (RG32F), inputs (RTDR_INPUT_*); 3 the output colour record
+// written.
 // All planes are row-major, y down, of size width x height.
 #ifndef RTDR_FILTERS_TAA_TAA_SHARED_H
 #define RTDR_FILTERS_TAA_TAA_SHARED_H

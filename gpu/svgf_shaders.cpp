@@ -1,7 +1,7 @@
 // The SVGF ports' pipelines and their dispatches. See svgf_shaders.h.
 #include "gpu/svgf_shaders.h"
 
-#include "core/error.h"
+#include "filters/svgf/atrous.h"
 
 #include <string>
 #include <vector>
@@ -83,8 +83,7 @@ void SvgfShaders::variance(ComputeBatch& batch, Streams illumination, Streams mo
 
 void SvgfShaders::atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out,
                          const GpuBuffer& prefiltered, const AtrousPush& push, int kernel_size) const {
-  if (kernel_size != 5 && kernel_size != 3)
-    throw Error("SvgfShaders::atrous: kernel_size must be 5 or 3, got " + std::to_string(kernel_size));
+  atrous_kernel(kernel_size);  // throws on a bad kernel_size, with the golden code's rule and message
   batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_,
                  {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered}, &push,
                  groups_x(push.width), groups_y(push.height), "atrous");

@@ -72,6 +72,11 @@ constexpr double kPipelineRelErrorFp16 = 2e-2;
 constexpr double kRelFloor = 1e-2;
 constexpr double kDisplayAbsError = 1e-3;
 
+// The colour bound for the context's illumination records.
+double pipeline_rel_error(const VulkanContext& context) {
+  return half_records(context) ? kPipelineRelErrorFp16 : kPipelineRelError;
+}
+
 // The largest absolute difference over the three channels (compare_rgb, gpu_fixtures.h: a NaN counts as infinite).
 double max_abs_error(const RgbPlane& gpu, const RgbPlane& golden) {
   REQUIRE(gpu.data.size() == golden.data.size());
@@ -123,7 +128,7 @@ PipelineErrors compare_pipelines(VulkanContext& context, const std::string& scen
         double(std::count_if(display.begin(), display.end(), [](double e) { return !(e <= kPipelineRelError); })) /
         double(display.size());
     INFO(scene_name << " frame " << f << ": colour max relative error " << colour_max);
-    CHECK(colour_max <= (half_records(context) ? kPipelineRelErrorFp16 : kPipelineRelError));
+    CHECK(colour_max <= pipeline_rel_error(context));
     // The display is the golden TAA of the pipeline's own tone-mapped colour and previous display.
     const RgbPlane tonemapped = tonemap(rgb_plane(got, "color"), TonemapParams{});
     const RgbPlane display_expected =
@@ -149,7 +154,7 @@ TEST_CASE("the Vulkan pipeline follows the golden SVGF over 10 frames of pillars
   INFO("device: " << context->device_name());
   const PipelineErrors worst = compare_pipelines(*context, "pillars", 96, 54, 10);
   WARN("pillars, 10 frames at 96x54: colour max relative error "
-       << worst.colour << " (bound " << (half_records(*context) ? kPipelineRelErrorFp16 : kPipelineRelError)
+       << worst.colour << " (bound " << pipeline_rel_error(*context)
        << "); display max absolute error " << worst.display
        << " (bound " << kDisplayAbsError << "); against the golden display (not asserted): "
        << worst.display_outliers * 100.0 << "% of pixels beyond " << kPipelineRelError << ", max absolute error "

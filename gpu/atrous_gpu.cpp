@@ -1,5 +1,5 @@
 // The Vulkan port of one a-trous level. See atrous_gpu.h; the shader is filters/svgf/atrous.comp, which filters
-// two streams at once: here both are the same planes.
+// two streams at once: here both hold the same values.
 #include "gpu/atrous_gpu.h"
 
 #include "core/error.h"
@@ -30,9 +30,9 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
   const auto in = illumination_buffer(context, w, h),
              surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              grad = plane_buffer(context, w, h, TexelFormat::RG32F),
-             out_direct = illumination_buffer(context, w, h), out_indirect = illumination_buffer(context, w, h),
+             filtered = illumination_buffer(context, w, h),
              prefiltered = plane_buffer(context, w, h, TexelFormat::RG32F);
-  pack_illumination(color, &variance, *in);
+  for (const int stream : {kDirectStream, kIndirectStream}) pack_illumination(stream, color, &variance, *in);
   pack_surface(s, *surface);
   pack_vec2(s.depth_grad, *grad);
 
@@ -41,13 +41,13 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
-        shaders.atrous(batch, {in.get(), in.get()}, {surface.get(), grad.get(), nullptr, nullptr},
-                       {out_direct.get(), out_indirect.get()}, *prefiltered, push, params.kernel_size);
+        shaders.atrous(batch, *in, {surface.get(), grad.get(), nullptr, nullptr}, *filtered, *prefiltered, push,
+                       params.kernel_size);
       },
       ms);
 
-  out.color = unpack_rgb(*out_direct, w, h);
-  out.variance = unpack_variance(*out_direct, w, h);
+  out.color = unpack_illumination(*filtered, w, h, kDirectStream);
+  out.variance = unpack_variance(*filtered, w, h, kDirectStream);
   out.prefiltered_variance = unpack_channel(*prefiltered, w, h, 2, 0);
   return out;
 }

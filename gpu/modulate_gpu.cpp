@@ -19,20 +19,20 @@ RgbPlane remodulate_vulkan(VulkanContext& context, const RgbPlane& direct, const
   if (colour.data.empty()) return colour;
 
   const int w = direct.width, h = direct.height;
-  const auto direct_buffer = illumination_buffer(context, w, h), indirect_buffer = illumination_buffer(context, w, h),
+  const auto illumination = illumination_buffer(context, w, h),
              albedo_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              emission_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              colour_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F);
-  pack_illumination(direct, nullptr, *direct_buffer);
-  pack_illumination(indirect, nullptr, *indirect_buffer);
-  pack_rgbw(albedo, nullptr, *albedo_buffer);
-  pack_rgbw(emission, nullptr, *emission_buffer);
+  pack_illumination(kDirectStream, direct, nullptr, *illumination);
+  pack_illumination(kIndirectStream, indirect, nullptr, *illumination);
+  pack_rgb(albedo, *albedo_buffer);
+  pack_rgb(emission, *emission_buffer);
 
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
-        shaders.modulate(batch, {direct_buffer.get(), indirect_buffer.get()}, *albedo_buffer, *emission_buffer,
-                         *colour_buffer, ModulatePush{uint32_t(w), uint32_t(h)});
+        shaders.modulate(batch, *illumination, *albedo_buffer, *emission_buffer, *colour_buffer,
+                         ModulatePush{uint32_t(w), uint32_t(h)});
       },
       ms);
   return unpack_rgb(*colour_buffer, w, h);

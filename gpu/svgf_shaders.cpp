@@ -39,13 +39,13 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
       temporal_(context, load_port(context, "temporal"),
                 bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
                 specialization()),
-      variance_(context, load_port(context, "variance"), bindings(context, 6, 2), sizeof(VariancePush),
+      variance_(context, load_port(context, "variance"), bindings(context, 5, 1), sizeof(VariancePush),
                 specialization()),
-      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 3, 2), sizeof(AtrousPush),
                   specialization({5})),
-      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 4, 3), sizeof(AtrousPush),
+      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 3, 2), sizeof(AtrousPush),
                   specialization({3})),
-      modulate_(context, load_port(context, "modulate"), bindings(context, 4, 1), sizeof(ModulatePush),
+      modulate_(context, load_port(context, "modulate"), bindings(context, 3, 1), sizeof(ModulatePush),
                 specialization()),
       tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
                specialization()),
@@ -64,35 +64,33 @@ std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& mor
 uint32_t SvgfShaders::groups_x(uint32_t width) const { return group_count(width, group_width_); }
 uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(height, group_height_); }
 
-void SvgfShaders::temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
-                           Streams illumination_out, Streams moments_out, const TemporalPush& push) const {
+void SvgfShaders::temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g,
+                           const HistoryPlanes& prev, const GpuBuffer& illumination_out, Streams moments_out,
+                           const TemporalPush& push) const {
   batch.dispatch(temporal_,
-                 {noisy.direct, noisy.indirect, g.surface, g.depth_grad, g.mesh, g.motion, prev.illumination.direct,
-                  prev.illumination.indirect, prev.moments.direct, prev.moments.indirect, prev.surface, prev.mesh,
-                  illumination_out.direct, illumination_out.indirect, moments_out.direct, moments_out.indirect},
+                 {&noisy, g.surface, g.depth_grad, g.mesh, g.motion, prev.illumination, prev.moments.direct,
+                  prev.moments.indirect, prev.surface, prev.mesh, &illumination_out, moments_out.direct,
+                  moments_out.indirect},
                  &push, groups_x(push.width), groups_y(push.height), "temporal");
 }
 
-void SvgfShaders::variance(ComputeBatch& batch, Streams illumination, Streams moments, const GBufferPlanes& g,
-                           Streams out, const VariancePush& push) const {
-  batch.dispatch(variance_,
-                 {illumination.direct, illumination.indirect, moments.direct, moments.indirect, g.surface,
-                  g.depth_grad, out.direct, out.indirect},
-                 &push, groups_x(push.width), groups_y(push.height), "variance");
+void SvgfShaders::variance(ComputeBatch& batch, const GpuBuffer& illumination, Streams moments,
+                           const GBufferPlanes& g, const GpuBuffer& out, const VariancePush& push) const {
+  batch.dispatch(variance_, {&illumination, moments.direct, moments.indirect, g.surface, g.depth_grad, &out}, &push,
+                 groups_x(push.width), groups_y(push.height), "variance");
 }
 
-void SvgfShaders::atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out,
+void SvgfShaders::atrous(ComputeBatch& batch, const GpuBuffer& in, const GBufferPlanes& g, const GpuBuffer& out,
                          const GpuBuffer& prefiltered, const AtrousPush& push, int kernel_size) const {
   atrous_kernel(kernel_size);  // throws on a bad kernel_size, with the golden code's rule and message
-  batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_,
-                 {in.direct, in.indirect, g.surface, g.depth_grad, out.direct, out.indirect, &prefiltered}, &push,
-                 groups_x(push.width), groups_y(push.height), "atrous");
+  batch.dispatch(kernel_size == 5 ? atrous_5x5_ : atrous_3x3_, {&in, g.surface, g.depth_grad, &out, &prefiltered},
+                 &push, groups_x(push.width), groups_y(push.height), "atrous");
 }
 
-void SvgfShaders::modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
-                           const GpuBuffer& colour, const ModulatePush& push) const {
-  batch.dispatch(modulate_, {filtered.direct, filtered.indirect, &albedo, &emission, &colour}, &push,
-                 groups_x(push.width), groups_y(push.height), "modulate");
+void SvgfShaders::modulate(ComputeBatch& batch, const GpuBuffer& filtered, const GpuBuffer& albedo,
+                           const GpuBuffer& emission, const GpuBuffer& colour, const ModulatePush& push) const {
+  batch.dispatch(modulate_, {&filtered, &albedo, &emission, &colour}, &push, groups_x(push.width),
+                 groups_y(push.height), "modulate");
 }
 
 void SvgfShaders::tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display,

@@ -1,7 +1,7 @@
 // The SVGF ports' compute pipelines, created once, and one function per pass that records its dispatch into a
-// ComputeBatch. Every buffer is a plane in the layout of filters/svgf/planes_shared.h; the per-stream passes take
-// the direct and the indirect stream together (Streams). The shaders are filters/svgf/*.comp and filters/taa/taa.comp;
-// each pass's bindings are listed in its <stem>_shared.h.
+// ComputeBatch. Every buffer is a plane in the layout of filters/svgf/planes_shared.h; the per-stream passes take the
+// direct and the indirect stream together: in one illumination buffer, and as two moments planes (Streams). The shaders
+// are filters/svgf/*.comp and filters/taa/taa.comp; each pass's bindings are listed in its <stem>_shared.h.
 #pragma once
 
 #include "filters/svgf/atrous_shared.h"
@@ -17,7 +17,7 @@
 
 namespace rtdr {
 
-// One plane per stream: [0] direct, [1] indirect.
+// One plane per stream: the moments.
 struct Streams {
   const GpuBuffer* direct;
   const GpuBuffer* indirect;
@@ -33,8 +33,8 @@ struct GBufferPlanes {
 
 // What temporal accumulation reads of the previous frame.
 struct HistoryPlanes {
-  Streams illumination;  // C'_{i-1}
-  Streams moments;       // mu1', mu2', n
+  const GpuBuffer* illumination;  // C'_{i-1}
+  Streams moments;                // mu1', mu2', n
   const GpuBuffer* surface;
   const GpuBuffer* mesh;
 };
@@ -51,18 +51,18 @@ class SvgfShaders {
   explicit SvgfShaders(VulkanContext& context);
 
   // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments.
-  void temporal(ComputeBatch& batch, Streams noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
-                Streams illumination_out, Streams moments_out, const TemporalPush& push) const;
+  void temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
+                const GpuBuffer& illumination_out, Streams moments_out, const TemporalPush& push) const;
   // [SVGF17 Sec. 4.2]: illumination C' and moments -> illumination (C', sigma'^2).
-  void variance(ComputeBatch& batch, Streams illumination, Streams moments, const GBufferPlanes& g, Streams out,
-                const VariancePush& push) const;
+  void variance(ComputeBatch& batch, const GpuBuffer& illumination, Streams moments, const GBufferPlanes& g,
+                const GpuBuffer& out, const VariancePush& push) const;
   // [SVGF17 Sec. 4.3, 4.4, Eq. 1-5]: one a-trous level with the kernel_size x kernel_size kernel (5 or 3: one
   // pipeline each, atrous.comp's specialization constant); `prefiltered` receives g3x3(Var) when
   // push.keep_prefiltered. Throws rtdr::Error for another kernel_size.
-  void atrous(ComputeBatch& batch, Streams in, const GBufferPlanes& g, Streams out, const GpuBuffer& prefiltered,
-              const AtrousPush& push, int kernel_size) const;
+  void atrous(ComputeBatch& batch, const GpuBuffer& in, const GBufferPlanes& g, const GpuBuffer& out,
+              const GpuBuffer& prefiltered, const AtrousPush& push, int kernel_size) const;
   // [SVGF17 Sec. 3]: colour = emission + albedo (direct + indirect).
-  void modulate(ComputeBatch& batch, Streams filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
+  void modulate(ComputeBatch& batch, const GpuBuffer& filtered, const GpuBuffer& albedo, const GpuBuffer& emission,
                 const GpuBuffer& colour, const ModulatePush& push) const;
   void tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display, const TonemapPush& push) const;
   void taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,

@@ -20,15 +20,15 @@ uint32_t commands_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_
 }  // namespace
 
 // Every device plane. [parity] pairs alternate between frames: [frame parity] is written this frame, the other
-// holds the previous frame's (the history). [stream]: 0 direct, 1 indirect.
+// holds the previous frame's (the history). [stream]: 0 direct, 1 indirect; an illumination plane holds both.
 struct SvgfVulkan::Buffers {
   int width, height;
   // This frame's inputs, packed by the host.
-  PlanePtr noisy[2], albedo, emission, depth_grad, motion;
+  PlanePtr noisy, albedo, emission, depth_grad, motion;
   // Histories and the G-buffer they were made on.
-  PlanePtr surface[2], mesh[2], moments[2][2], history[2][2], display[2];
+  PlanePtr surface[2], mesh[2], moments[2][2], history[2], display[2];
   // This frame's intermediates.
-  PlanePtr temporal[2], variance[2], level[2][2], colour, tonemapped, prefiltered;
+  PlanePtr temporal, variance, level[2], colour, tonemapped, prefiltered;
   // The results, copied where the host reads them fast (compute.h's Memory::Readback).
   PlanePtr colour_readback, display_readback;
 
@@ -37,14 +37,16 @@ struct SvgfVulkan::Buffers {
     // Illumination records: RGBA32F, or RGBA16F with IlluminationRecords::Fp16 (planes_shared.h).
     const auto illumination = [&] { return illumination_buffer(context, w, h); };
     for (int s = 0; s < 2; ++s) {
-      noisy[s] = illumination();
-      temporal[s] = illumination();
-      variance[s] = illumination();
       surface[s] = rgba();
       mesh[s] = plane_buffer(context, w, h, TexelFormat::R32UI);
       display[s] = rgba();
-      for (int k = 0; k < 2; ++k) moments[s][k] = rgba(), history[s][k] = illumination(), level[s][k] = illumination();
+      history[s] = illumination();
+      level[s] = illumination();
+      for (int k = 0; k < 2; ++k) moments[s][k] = rgba();
     }
+    noisy = illumination();
+    temporal = illumination();
+    variance = illumination();
     albedo = rgba();
     emission = rgba();
     colour = rgba();
@@ -90,10 +92,10 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // 1. Upload: the host packs this frame's planes into the device's records.
   const auto t0 = std::chrono::steady_clock::now();
   const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  pack_illumination(rgb_plane(in, "direct"), nullptr, *b.noisy[0]);
-  pack_illumination(rgb_plane(in, "indirect"), nullptr, *b.noisy[1]);
-  pack_rgbw(rgb_plane(in, "albedo"), nullptr, *b.albedo);
-  pack_rgbw(rgb_plane(in, "emission"), nullptr, *b.emission);
+  pack_illumination(kDirectStream, rgb_plane(in, "direct"), nullptr, *b.noisy);
+  pack_illumination(kIndirectStream, rgb_plane(in, "indirect"), nullptr, *b.noisy);
+  pack_rgb(rgb_plane(in, "albedo"), *b.albedo);
+  pack_rgb(rgb_plane(in, "emission"), *b.emission);
   pack_surface(surface, *b.surface[cur]);
   pack_ids(surface.mesh, *b.mesh[cur]);
   pack_vec2(surface.depth_grad, *b.depth_grad);
@@ -104,26 +106,25 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   const SvgfParams& p = options_.svgf;
   const uint32_t uw = uint32_t(w), uh = uint32_t(h);
   const GBufferPlanes g{b.surface[cur].get(), b.depth_grad.get(), b.mesh[cur].get(), b.motion.get()};
-  const HistoryPlanes history{Buffers::streams(b.history[prev]), Buffers::streams(b.moments[prev]),
-                              b.surface[prev].get(), b.mesh[prev].get()};
+  const HistoryPlanes history{b.history[prev].get(), Buffers::streams(b.moments[prev]), b.surface[prev].get(),
+                              b.mesh[prev].get()};
   // The colour history is the output of level history_level, or the temporal output when that level is not run.
   const bool history_from_levels = p.history_level < p.atrous_levels;
-  const Streams temporal_out = history_from_levels ? Buffers::streams(b.temporal) : Buffers::streams(b.history[cur]);
-  shaders_.temporal(batch_, Buffers::streams(b.noisy), g, history, temporal_out, Buffers::streams(b.moments[cur]),
+  const GpuBuffer& temporal_out = history_from_levels ? *b.temporal : *b.history[cur];
+  shaders_.temporal(batch_, *b.noisy, g, history, temporal_out, Buffers::streams(b.moments[cur]),
                     TemporalPush{uw, uh, has_history ? uw : 0u, has_history ? uh : 0u, has_history ? 1u : 0u,
                                  uint32_t(p.max_history), p.alpha, p.alpha_moments, p.temporal_depth_relative,
                                  p.temporal_normal_cosine});
-  shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, Buffers::streams(b.variance),
+  shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, *b.variance,
                     VariancePush{uw, uh, uint32_t(p.variance_min_history), p.sigma_z, p.sigma_n, p.epsilon});
-  Streams filtered = p.atrous_levels > 0 ? Buffers::streams(b.variance) : temporal_out;
+  const GpuBuffer* filtered = p.atrous_levels > 0 ? b.variance.get() : &temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
-    const Streams out =
-        level == p.history_level ? Buffers::streams(b.history[cur]) : Buffers::streams(b.level[level & 1]);
-    shaders_.atrous(batch_, filtered, g, out, *b.prefiltered,
+    const GpuBuffer* out = level == p.history_level ? b.history[cur].get() : b.level[level & 1].get();
+    shaders_.atrous(batch_, *filtered, g, *out, *b.prefiltered,
                     AtrousPush{uw, uh, level, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u}, p.kernel_size);
     filtered = out;
   }
-  shaders_.modulate(batch_, filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});
+  shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});
   shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{uw, uh, options_.tonemap.exposure});
   // Without a TAA history the TAA shader returns its input: the first frame's display is the tone-mapped colour.
   const TaaParams& t = options_.taa_params;

@@ -28,8 +28,8 @@ RgbPlane taa_vulkan(VulkanContext& context, const RgbPlane& current, const RgbPl
              history_buffer = plane_buffer(context, history.width, history.height, TexelFormat::RGBA32F),
              motion_buffer = plane_buffer(context, w, h, TexelFormat::RG32F),
              out_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F);
-  pack_rgbw(current, nullptr, *current_buffer);
-  if (has_history) pack_rgbw(history, nullptr, *history_buffer);
+  pack_rgb(current, *current_buffer);
+  if (has_history) pack_rgb(history, *history_buffer);
   pack_vec2(motion, *motion_buffer);
 
   const TaaPush push{.width = uint32_t(w),

@@ -51,21 +51,22 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
              prev_moments = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
              prev_surface = plane_buffer(context, hw, hh, TexelFormat::RGBA32F),
              prev_mesh = plane_buffer(context, hw, hh, TexelFormat::R32UI);
-  pack_illumination(noisy, nullptr, *noisy_buffer);
+  for (const int stream : {kDirectStream, kIndirectStream}) pack_illumination(stream, noisy, nullptr, *noisy_buffer);
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
   pack_ids(cur.mesh, *mesh);
   pack_vec2(cur.motion, *motion);
   if (has_history) {
-    pack_illumination(prev.color, nullptr, *prev_color);
+    for (const int stream : {kDirectStream, kIndirectStream})
+      pack_illumination(stream, prev.color, nullptr, *prev_color);
     pack_moments(prev.moment1, prev.moment2, prev.length, *prev_moments);
     pack_surface(prev.surface, *prev_surface);
     pack_ids(prev.surface.mesh, *prev_mesh);
   }
-  // Illumination records C' (direct, indirect), then moments records.
-  const std::unique_ptr<GpuBuffer> outputs[4] = {
-      illumination_buffer(context, w, h), illumination_buffer(context, w, h),
-      plane_buffer(context, w, h, TexelFormat::RGBA32F), plane_buffer(context, w, h, TexelFormat::RGBA32F)};
+  // Illumination records C' (both streams), then moments records (direct, indirect).
+  const std::unique_ptr<GpuBuffer> outputs[3] = {illumination_buffer(context, w, h),
+                                                 plane_buffer(context, w, h, TexelFormat::RGBA32F),
+                                                 plane_buffer(context, w, h, TexelFormat::RGBA32F)};
 
   const TemporalPush push{uint32_t(w),
                           uint32_t(h),
@@ -77,22 +78,21 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                           params.alpha_moments,
                           params.temporal_depth_relative,
                           params.temporal_normal_cosine};
-  // Both streams of the shader read the same planes; the indirect outputs are not read back.
+  // Both streams hold the same values; the indirect stream's outputs are not read back.
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
-        shaders.temporal(batch, {noisy_buffer.get(), noisy_buffer.get()},
-                         {surface.get(), grad.get(), mesh.get(), motion.get()},
-                         {{prev_color.get(), prev_color.get()}, {prev_moments.get(), prev_moments.get()},
-                          prev_surface.get(), prev_mesh.get()},
-                         {outputs[0].get(), outputs[1].get()}, {outputs[2].get(), outputs[3].get()}, push);
+        shaders.temporal(batch, *noisy_buffer, {surface.get(), grad.get(), mesh.get(), motion.get()},
+                         {prev_color.get(), {prev_moments.get(), prev_moments.get()}, prev_surface.get(),
+                          prev_mesh.get()},
+                         *outputs[0], {outputs[1].get(), outputs[2].get()}, push);
       },
       ms);
 
-  out.color = unpack_rgb(*outputs[0], w, h);
-  out.moment1 = unpack_channel(*outputs[2], w, h, 4, 0);
-  out.moment2 = unpack_channel(*outputs[2], w, h, 4, 1);
-  out.length = unpack_channel(*outputs[2], w, h, 4, 2);
+  out.color = unpack_illumination(*outputs[0], w, h, kDirectStream);
+  out.moment1 = unpack_channel(*outputs[1], w, h, 4, 0);
+  out.moment2 = unpack_channel(*outputs[1], w, h, 4, 1);
+  out.length = unpack_channel(*outputs[1], w, h, 4, 2);
   return out;
 }
 

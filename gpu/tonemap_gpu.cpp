@@ -14,7 +14,7 @@ RgbPlane tonemap_vulkan(VulkanContext& context, const RgbPlane& colour, const To
 
   const auto colour_buffer = plane_buffer(context, colour.width, colour.height, TexelFormat::RGBA32F),
              display_buffer = plane_buffer(context, colour.width, colour.height, TexelFormat::RGBA32F);
-  pack_rgbw(colour, nullptr, *colour_buffer);
+  pack_rgb(colour, *colour_buffer);
 
   run_pass(
       context,

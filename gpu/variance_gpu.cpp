@@ -28,23 +28,23 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
              moments = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              grad = plane_buffer(context, w, h, TexelFormat::RG32F),
-             out_direct = illumination_buffer(context, w, h), out_indirect = illumination_buffer(context, w, h);
-  pack_illumination(t.color, nullptr, *illumination);
+             out = illumination_buffer(context, w, h);
+  for (const int stream : {kDirectStream, kIndirectStream}) pack_illumination(stream, t.color, nullptr, *illumination);
   pack_moments(t.moment1, t.moment2, t.length, *moments);
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
 
   const VariancePush push{uint32_t(w),    uint32_t(h),    uint32_t(params.variance_min_history),
                           params.sigma_z, params.sigma_n, params.epsilon};
-  // Both streams of the shader read the same planes; the indirect output is not read back.
+  // Both streams hold the same values; the indirect stream's output is not read back.
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
-        shaders.variance(batch, {illumination.get(), illumination.get()}, {moments.get(), moments.get()},
-                         {surface.get(), grad.get(), nullptr, nullptr}, {out_direct.get(), out_indirect.get()}, push);
+        shaders.variance(batch, *illumination, {moments.get(), moments.get()},
+                         {surface.get(), grad.get(), nullptr, nullptr}, *out, push);
       },
       ms);
-  return unpack_variance(*out_direct, w, h);
+  return unpack_variance(*out, w, h, kDirectStream);
 }
 
 }  // namespace rtdr

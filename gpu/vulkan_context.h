@@ -43,10 +43,10 @@ struct VulkanOptions {
   IlluminationRecords illumination = IlluminationRecords::Auto;
 };
 
-// The most storage buffers a port binds with storage inputs: the temporal pass's 16 planes (temporal_shared.h).
-inline constexpr uint32_t kStorageInputBindings = 16;
-// The most storage texel buffers a port binds with texel inputs: the temporal pass's 12 input planes.
-inline constexpr uint32_t kTexelInputBindings = 12;
+// The most storage buffers a port binds with storage inputs: the temporal pass's 13 planes (temporal_shared.h).
+inline constexpr uint32_t kStorageInputBindings = 13;
+// The most storage texel buffers a port binds with texel inputs: the temporal pass's 10 input planes.
+inline constexpr uint32_t kTexelInputBindings = 10;
 
 // What the validation layer said: warnings and errors only (info and verbose are not kept).
 struct ValidationLog {

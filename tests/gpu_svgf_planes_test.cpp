@@ -13,7 +13,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -76,7 +78,8 @@ TEST_CASE("half_record_variance is the square of the stored standard deviation")
   CHECK(half_record_value(1e-8f) == 0.0f);
 }
 
-TEST_CASE("illumination records hold what half_record_value and half_record_variance say, or the values") {
+TEST_CASE("illumination records hold what half_record_value and half_record_variance say, or the values, both "
+          "streams side by side") {
   const auto context = validated_context();
   if (!context) return;
   RgbPlane colour(3, 2);
@@ -86,15 +89,33 @@ TEST_CASE("illumination records hold what half_record_value and half_record_vari
     colour.data[i] = glm::vec3(values[i], values[(i + 1) % 6], values[(i + 2) % 6]);
     variance.data[i] = values[(i + 3) % 6];
   }
+  // The indirect stream: other values, so that a record read from the wrong stream shows.
+  RgbPlane colour_indirect(3, 2);
+  FloatPlane variance_indirect(3, 2);
+  for (int i = 0; i < 6; ++i) {
+    colour_indirect.data[i] = 2.0f * colour.data[5 - i] + 1.0f;
+    variance_indirect.data[i] = variance.data[5 - i] + 0.5f;
+  }
+  colour_indirect.data[1].r = 3.0f;  // 0x4200 as a half, for the layout check below
+  const bool half = half_records(*context);
   const auto buffer = illumination_buffer(*context, 3, 2);
-  CHECK(buffer->format() == (half_records(*context) ? TexelFormat::RGBA16F : TexelFormat::RGBA32F));
-  CHECK(buffer->floats() == (half_records(*context) ? 12u : 24u));  // 8 or 16 bytes a record
-  pack_illumination(colour, &variance, *buffer);
-  const RgbPlane colour_back = unpack_rgb(*buffer, 3, 2);
-  const FloatPlane variance_back = unpack_variance(*buffer, 3, 2);
-  CHECK(colour_back.data == stored_colour(*context, colour).data);
-  CHECK(variance_back.data == stored_variance(*context, variance).data);
-  if (half_records(*context)) CHECK_THROWS_WITH(pack_rgbw(colour, nullptr, *buffer), Catch::Contains("halves"));
+  CHECK(buffer->format() == (half ? TexelFormat::RGBA16F : TexelFormat::RGBA32F));
+  CHECK(buffer->floats() == (half ? 24u : 48u));  // two records of 8 or 16 bytes a pixel
+  pack_illumination(kDirectStream, colour, &variance, *buffer);
+  pack_illumination(kIndirectStream, colour_indirect, &variance_indirect, *buffer);
+  CHECK(unpack_illumination(*buffer, 3, 2, kDirectStream).data == stored_colour(*context, colour).data);
+  CHECK(unpack_variance(*buffer, 3, 2, kDirectStream).data == stored_variance(*context, variance).data);
+  CHECK(unpack_illumination(*buffer, 3, 2, kIndirectStream).data == stored_colour(*context, colour_indirect).data);
+  CHECK(unpack_variance(*buffer, 3, 2, kIndirectStream).data == stored_variance(*context, variance_indirect).data);
+  // The layout the shaders read (planes_shared.h): pixel i's direct record, then its indirect one. Pixel 1's
+  // indirect red is the first value of its second record: float 4 of the pixel's 8 (32 bytes), or the low half of
+  // 32-bit word 2 of its 4 (16 bytes).
+  const float* pixel1 = buffer->data() + (half ? 4 : 8);
+  if (half) CHECK((std::bit_cast<uint32_t>(pixel1[2]) & 0xFFFFu) == 0x4200u);
+  else CHECK(pixel1[4] == 3.0f);
+  CHECK_THROWS_WITH(pack_illumination(2, colour, nullptr, *buffer), Catch::Contains("stream must be"));
+  CHECK_THROWS_WITH(unpack_variance(*buffer, 3, 2, -1), Catch::Contains("stream must be"));
+  if (half) CHECK_THROWS_WITH(pack_rgb(colour, *buffer), Catch::Contains("halves"));
 }
 
 TEST_CASE("an empty plane packs into and unpacks from the one texel plane_buffer gives it, a larger one throws") {
@@ -108,15 +129,16 @@ TEST_CASE("an empty plane packs into and unpacks from the one texel plane_buffer
   const auto illumination = illumination_buffer(*context, 0, 0);
   const auto rg = plane_buffer(*context, 0, 0, TexelFormat::RG32F);
   const auto ids = plane_buffer(*context, 0, 0, TexelFormat::R32UI);
-  CHECK_NOTHROW(pack_rgbw(RgbPlane(0, 0), nullptr, *rgba));
-  CHECK_NOTHROW(pack_illumination(RgbPlane(0, 0), nullptr, *illumination));
+  CHECK_NOTHROW(pack_rgb(RgbPlane(0, 0), *rgba));
+  CHECK_NOTHROW(pack_illumination(kDirectStream, RgbPlane(0, 0), nullptr, *illumination));
   CHECK_NOTHROW(pack_vec2(Vec2Plane(0, 0), *rg));
   CHECK_NOTHROW(pack_ids(UIntPlane(0, 0), *ids));
-  CHECK(unpack_rgb(*illumination, 0, 0).data.empty());
-  CHECK(unpack_variance(*illumination, 0, 0).data.empty());
+  CHECK(unpack_illumination(*illumination, 0, 0, kIndirectStream).data.empty());
+  CHECK(unpack_variance(*illumination, 0, 0, kIndirectStream).data.empty());
   // One texel is no room for two.
-  CHECK_THROWS_WITH(pack_rgbw(RgbPlane(2, 1), nullptr, *rgba), Catch::Contains("cannot hold 2 records"));
-  CHECK_THROWS_WITH(unpack_rgb(*illumination, 2, 1), Catch::Contains("cannot hold 2 records"));
+  CHECK_THROWS_WITH(pack_rgb(RgbPlane(2, 1), *rgba), Catch::Contains("cannot hold 2 records"));
+  CHECK_THROWS_WITH(unpack_rgb(*rgba, 2, 1), Catch::Contains("cannot hold 2 records"));
+  CHECK_THROWS_WITH(unpack_illumination(*illumination, 1, 1, kDirectStream), Catch::Contains("cannot hold 2 records"));
 }
 
 TEST_CASE("the device keeps subnormal halves, which the fp16 records' bounds rely on") {

@@ -9,13 +9,14 @@
 // Same skip rules: taps outside the image and taps without a surface add nothing (here: with w = 0), a pixel without a
 // surface passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
 // one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
-// [SVGF17 Eq. 3, 4]; only w_l [Eq. 5] differs per stream. A plain gather, no shared memory: on lavapipe a shared-memory
-// tile measured 2x slower than the gather, and on an H100 2.3x slower at steps 1 and 2, where its shared memory also
-// slowed the untiled levels 3x (docs/performance.md). The kernel size is a specialization constant, so the compiler
-// knows the taps and unrolls their loops (half the instructions on lavapipe).
-//   in:  bindings 0-1: illumination (c_i, Var(c_i)) of the direct and the indirect stream; 2: surface; 3: depth
+// [SVGF17 Eq. 3, 4] (only w_l [Eq. 5] differs per stream), and of its illumination pair (planes_shared.h). A plain
+// gather, no shared memory: on lavapipe a shared-memory tile measured 2x slower than the gather, and on an H100 2.3x
+// slower at steps 1 and 2, where its shared memory also slowed the untiled levels 3x (docs/performance.md). The kernel
+// size is a specialization constant, so the compiler knows the taps and unrolls their loops (half the instructions on
+// lavapipe).
+//   in:  bindings 0: illumination (c_i, Var(c_i)) of both streams, direct and indirect; 1: surface; 2: depth
 //        gradient;
-//   out: bindings 4-5: illumination (c_{i+1}, Var(c_{i+1})); 6: g3x3(Var(c_i)) of both streams, written only
+//   out: bindings 3: illumination (c_{i+1}, Var(c_{i+1})); 4: g3x3(Var(c_i)) of both streams, written only
 //        when frame.keep_prefiltered is set. Layout: planes_shared.h and atrous_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -27,13 +28,11 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_ILLUMINATION(0, direct_in)
-RTDR_INPUT_ILLUMINATION(1, indirect_in)
-RTDR_INPUT_RGBA(2, surface)
-RTDR_INPUT_RG(3, depth_grad)
-RTDR_OUTPUT_ILLUMINATION(4, direct_out)
-RTDR_OUTPUT_ILLUMINATION(5, indirect_out)
-layout(std430, set = 0, binding = 6) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
+RTDR_INPUT_ILLUMINATION(0, illumination_in)
+RTDR_INPUT_RGBA(1, surface)
+RTDR_INPUT_RG(2, depth_grad)
+RTDR_OUTPUT_ILLUMINATION(3, illumination_out)
+layout(std430, set = 0, binding = 4) writeonly buffer Prefiltered { vec2 prefiltered_out[]; };
 
 layout(push_constant) uniform Push { AtrousPush push; };
 
@@ -48,12 +47,6 @@ layout(constant_id = kAtrousKernelSizeConstant) const int kernel_size = 5;
 // Plane accessors (filters/image.h's at, inside): pixel (x, y) at y * width + x.
 int index_of(int x, int y) { return y * int(frame.width) + x; }
 bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.width) && y < int(frame.height); }
-
-// The two streams side by side: component 0 direct, 1 indirect.
-struct Illumination {
-  vec4 stream[2];  // (c.r, c.g, c.b, Var(c)) per stream
-};
-Illumination illumination_at(int i) { return Illumination(vec4[2](direct_in(i), indirect_in(i))); }
 
 // core/color.h's luminance, in its order of operations.
 float luminance(vec3 rgb) {
@@ -87,7 +80,7 @@ vec2 prefilter_variance_pixel(int x, int y) {
       const float g = kGaussian3[dx + 1] * kGaussian3[dy + 1];
       // The neighbour's variance, the border pixel where (x + dx, y + dy) falls outside.
       const int qx = clamp(x + dx, 0, int(frame.width) - 1), qy = clamp(y + dy, 0, int(frame.height) - 1);
-      const Illumination q = illumination_at(index_of(qx, qy));
+      const Illumination q = illumination_in(index_of(qx, qy));
       // GPU only: `precise` keeps g * var_q and the sum two roundings, as in the golden function.
       sum += g * vec2(q.stream[0].w, q.stream[1].w);
     }
@@ -165,13 +158,12 @@ void main() {
   if (x >= int(frame.width) || y >= int(frame.height)) return;
   const int i = index_of(x, y);
   const vec4 s_p = surface(i);
-  const Illumination c_p = illumination_at(i);
+  const Illumination c_p = illumination_in(i);
   if (frame.keep_prefiltered != 0u) prefiltered_out[i] = prefilter_variance_pixel(x, y);
 
   // No surface, nothing to compare with: the input passes through.
   if (!has_surface(s_p)) {
-    direct_out(i, c_p.stream[0]);
-    indirect_out(i, c_p.stream[1]);
+    illumination_out(i, c_p);
     return;
   }
   // atrous_kernel (atrous.cpp): the host has checked kernel_size is 5 or 3; the weights are atrous_shared.h's.
@@ -198,7 +190,7 @@ void main() {
       const int q = index_of(clamp(qx, 0, int(frame.width) - 1), clamp(qy, 0, int(frame.height) - 1));
       const vec4 s_q = surface(q);
       const bool skipped = !in_image || !has_surface(s_q);
-      const Illumination c_q = illumination_at(q);
+      const Illumination c_q = illumination_in(q);
       const float hk = kernel_weight(k), hj = kernel_weight(j);
       precise float h = hk * hj;  // h(q) = h(dx) h(dy)
       // w(p, q) [SVGF17 Eq. 2] per stream; 1 at the centre tap, where every edge-stopping weight is 1.
@@ -217,6 +209,5 @@ void main() {
   const vec3 c_next_indirect = sum_hwc[1] / sum_hw[1];
   // Var(c_{i+1}(p)) = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2 [SVGF17 Sec. 4.3].
   precise vec2 var_next = sum_h2w2_var / (sum_hw * sum_hw);
-  direct_out(i, vec4(c_next_direct, var_next[0]));
-  indirect_out(i, vec4(c_next_indirect, var_next[1]));
+  illumination_out(i, Illumination(vec4[2](vec4(c_next_direct, var_next[0]), vec4(c_next_indirect, var_next[1]))));
 }

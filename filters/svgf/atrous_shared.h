@@ -3,9 +3,9 @@
 // (atrous.cpp's atrous_kernel takes them from here) and the prefilter's binomial weights. Both compilers include this
 // file; GLSL has the C preprocessor, and core/shader_shared.h maps GLSL's types to C++.
 //
-// Buffer layout (filters/svgf/planes_shared.h): bindings 0-1 the illumination records (c_i, Var(c_i)) of the direct
-// and the indirect stream, 2 the surface record, 3 the depth gradient, all inputs (RTDR_INPUT_*); 4-5 the records
-// (c_{i+1}, Var(c_{i+1})) written, 6 g3x3(Var(c_i)) of both streams written (vec2 per pixel) when keep_prefiltered.
+// Buffer layout (filters/svgf/planes_shared.h): binding 0 the illumination records (c_i, Var(c_i)) of both streams,
+// direct and indirect, 1 the surface record, 2 the depth gradient, all inputs (RTDR_INPUT_*); 3 the records
+// (c_{i+1}, Var(c_{i+1})) written, 4 g3x3(Var(c_i)) of both streams written (vec2 per pixel) when keep_prefiltered.
 //
 // Accuracy of the port: the shader does the golden functions' fp32 operations in the same order (the sums and
 // products are `precise`, so no fma contraction changes their rounding). What differs is exp, log and sqrt:
@@ -59,7 +59,7 @@ struct AtrousPush {
   float sigma_n;
   float sigma_l;
   float epsilon;
-  RTDR_SHARED_UINT keep_prefiltered;  // 1: write g3x3(Var(c_i)) to binding 6
+  RTDR_SHARED_UINT keep_prefiltered;  // 1: write g3x3(Var(c_i)) to binding 4
 };
 
 #ifdef __cplusplus

@@ -1,7 +1,7 @@
 // Remodulation [SVGF17 Sec. 3], the Vulkan port of remodulate_pixel (modulate.cpp), line for line:
 // colour = emission + max(albedo, 0.001) * (direct + indirect). One invocation per pixel.
-//   in:  bindings 0-3: direct, indirect (illumination records: the last a-trous level's), albedo, emission (colour
-//        records); out: binding 4: colour. Layout: planes_shared.h, modulate_shared.h.
+//   in:  bindings 0: direct and indirect (illumination records: the last a-trous level's), 1-2: albedo, emission
+//        (colour records); out: binding 3: colour. Layout: planes_shared.h, modulate_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -11,11 +11,10 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_ILLUMINATION(0, direct_in)
-RTDR_INPUT_ILLUMINATION(1, indirect_in)
-RTDR_INPUT_RGBA(2, albedo_in)
-RTDR_INPUT_RGBA(3, emission_in)
-layout(std430, set = 0, binding = 4) writeonly buffer Colour { vec4 colour_out[]; };
+RTDR_INPUT_ILLUMINATION(0, illumination_in)
+RTDR_INPUT_RGBA(1, albedo_in)
+RTDR_INPUT_RGBA(2, emission_in)
+layout(std430, set = 0, binding = 3) writeonly buffer Colour { vec4 colour_out[]; };
 
 layout(push_constant) uniform Push { ModulatePush frame; };
 
@@ -38,7 +37,8 @@ void main() {
   const uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= frame.width || pixel.y >= frame.height) return;
   const int i = int(pixel.y * frame.width + pixel.x);
-  const vec3 colour = remodulate_pixel(direct_in(i).rgb, indirect_in(i).rgb,
+  const Illumination filtered = illumination_in(i);
+  const vec3 colour = remodulate_pixel(filtered.stream[kDirectStream].rgb, filtered.stream[kIndirectStream].rgb,
                                        albedo_in(i).rgb, emission_in(i).rgb);
   colour_out[i] = vec4(colour, 0.0);
 }

@@ -3,8 +3,8 @@
 // demodulation floor. Both compilers include this file; GLSL has the C preprocessor, and core/shader_shared.h
 // maps the types.
 //
-// Bindings (layout: planes_shared.h): 0-1 the direct and indirect illumination records, 2-3 the albedo and emission
-// colour records, inputs (RTDR_INPUT_*); 4 the colour record written.
+// Bindings (layout: planes_shared.h): 0 the illumination records of both streams, direct and indirect, 1-2 the albedo
+// and emission colour records, inputs (RTDR_INPUT_*); 3 the colour record written.
 #ifndef RTDR_FILTERS_SVGF_MODULATE_SHARED_H
 #define RTDR_FILTERS_SVGF_MODULATE_SHARED_H
 

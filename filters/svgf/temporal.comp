@@ -3,9 +3,9 @@
 // taps, else a 3x3 fallback, else a disocclusion; then the EMA of colour and moments with
 // alpha_eff = max(alpha, 1/n). One invocation per pixel for both streams, direct and indirect: the consistency
 // tests and tap weights depend on the G-buffers alone, so they are computed once and applied to both histories.
-//   in:  bindings 0-1 noisy illumination (direct, indirect); 2-5 current surface, depth gradient, mesh id, motion;
-//        6-7 history illumination, 8-9 history moments (direct, indirect); 10-11 previous surface, mesh id.
-//   out: bindings 12-13 illumination (C', 0), 14-15 moments (mu1', mu2', n, 0) (direct, indirect).
+//   in:  bindings 0 noisy illumination (both streams); 1-4 current surface, depth gradient, mesh id, motion;
+//        5 history illumination (both streams), 6-7 history moments (direct, indirect); 8-9 previous surface, mesh id.
+//   out: bindings 10 illumination (C', 0) (both streams), 11-12 moments (mu1', mu2', n, 0) (direct, indirect).
 //   Layout: planes_shared.h and temporal_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -17,22 +17,19 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_ILLUMINATION(0, noisy_direct)
-RTDR_INPUT_ILLUMINATION(1, noisy_indirect)
-RTDR_INPUT_RGBA(2, cur_surface)
-RTDR_INPUT_RG(3, cur_depth_grad)
-RTDR_INPUT_UINT(4, cur_mesh)
-RTDR_INPUT_RG(5, cur_motion)
-RTDR_INPUT_ILLUMINATION(6, prev_direct)
-RTDR_INPUT_ILLUMINATION(7, prev_indirect)
-RTDR_INPUT_RGBA(8, prev_moments_direct)
-RTDR_INPUT_RGBA(9, prev_moments_indirect)
-RTDR_INPUT_RGBA(10, prev_surface)
-RTDR_INPUT_UINT(11, prev_mesh)
-RTDR_OUTPUT_ILLUMINATION(12, out_direct)
-RTDR_OUTPUT_ILLUMINATION(13, out_indirect)
-layout(std430, set = 0, binding = 14) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
-layout(std430, set = 0, binding = 15) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
+RTDR_INPUT_ILLUMINATION(0, noisy)
+RTDR_INPUT_RGBA(1, cur_surface)
+RTDR_INPUT_RG(2, cur_depth_grad)
+RTDR_INPUT_UINT(3, cur_mesh)
+RTDR_INPUT_RG(4, cur_motion)
+RTDR_INPUT_ILLUMINATION(5, prev_illumination)
+RTDR_INPUT_RGBA(6, prev_moments_direct)
+RTDR_INPUT_RGBA(7, prev_moments_indirect)
+RTDR_INPUT_RGBA(8, prev_surface)
+RTDR_INPUT_UINT(9, prev_mesh)
+RTDR_OUTPUT_ILLUMINATION(10, out_illumination)
+layout(std430, set = 0, binding = 11) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
+layout(std430, set = 0, binding = 12) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
 
 layout(push_constant) uniform Push { TemporalPush push; };
 
@@ -76,8 +73,9 @@ HistorySample add_tap(HistorySample h, vec4 color, vec4 moments, float w) {
 }
 void add_taps(inout Histories h, ivec2 q, float w) {
   const int i = prev_index(q);
-  h.stream[0] = add_tap(h.stream[0], prev_direct(i), prev_moments_direct(i), w);
-  h.stream[1] = add_tap(h.stream[1], prev_indirect(i), prev_moments_indirect(i), w);
+  const Illumination c = prev_illumination(i);
+  h.stream[0] = add_tap(h.stream[0], c.stream[0], prev_moments_direct(i), w);
+  h.stream[1] = add_tap(h.stream[1], c.stream[1], prev_moments_indirect(i), w);
 }
 
 HistorySample scaled(HistorySample h, float s) {
@@ -226,8 +224,7 @@ TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h) {
 }
 
 void write(int i, TemporalPixel direct, TemporalPixel indirect) {
-  out_direct(i, vec4(direct.color, 0.0));
-  out_indirect(i, vec4(indirect.color, 0.0));
+  out_illumination(i, Illumination(vec4[2](vec4(direct.color, 0.0), vec4(indirect.color, 0.0))));
   out_moments_direct[i] = vec4(direct.moment1, direct.moment2, direct.len, 0.0);
   out_moments_indirect[i] = vec4(indirect.moment1, indirect.moment2, indirect.len, 0.0);
 }
@@ -248,6 +245,6 @@ void main() {
   }
   Histories h;
   const bool found = backproject_history(pixel.x, pixel.y, c, h);
-  write(i, temporal_stream(noisy_direct(i).rgb, found, h.stream[0]),
-        temporal_stream(noisy_indirect(i).rgb, found, h.stream[1]));
+  const Illumination C = noisy(i);
+  write(i, temporal_stream(C.stream[0].rgb, found, h.stream[0]), temporal_stream(C.stream[1].rgb, found, h.stream[1]));
 }

@@ -4,11 +4,11 @@
 // preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (layout of each plane: planes_shared.h; the history's planes are prev_width x prev_height):
-//   0-1 noisy illumination C_i, direct and indirect                                    inputs (RTDR_INPUT_*)
-//   2 surface, 3 depth gradient, 4 mesh id, 5 motion                                   current G-buffer
-//   6-7 illumination C'_{i-1}, 8-9 moments (mu1', mu2', n) of the direct and indirect  TemporalHistory
-//   10 surface, 11 mesh id                                                             TemporalHistory::surface
-//   12-13 illumination C'_i, 14-15 moments, direct and indirect, written               storage buffers
+//   0 noisy illumination C_i, both streams                                           inputs (RTDR_INPUT_*)
+//   1 surface, 2 depth gradient, 3 mesh id, 4 motion                                 current G-buffer
+//   5 illumination C'_{i-1}, 6-7 moments (mu1', mu2', n) of the direct and indirect  TemporalHistory
+//   8 surface, 9 mesh id                                                             TemporalHistory::surface
+//   10 illumination C'_i, 11-12 moments, direct and indirect, written                storage buffers
 #ifndef RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 #define RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 
@@ -22,13 +22,13 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..15 above): 12 storage texel buffers and 4 storage buffers. Vulkan guarantees only 4
+// The number of bindings (0..12 above): 10 storage texel buffers and 3 storage buffers. Vulkan guarantees only 4
 // of each per stage (maxPerStageDescriptorStorageImages, which counts storage texel buffers, and
-// maxPerStageDescriptorStorageBuffers). Built for storage inputs (core/shader_shared.h) all 16 are storage
+// maxPerStageDescriptorStorageBuffers). Built for storage inputs (core/shader_shared.h) all 13 are storage
 // buffers. The context picks either build only where the device allows that many (gpu/vulkan_context.cpp,
 // resolve_inputs).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalTexelBindings = 12;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalStorageBindings = 4;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalTexelBindings = 10;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTemporalStorageBindings = 3;
 
 // The push-constant block: the current and previous frame sizes, whether there is a history (0: first frame,
 // every pixel a disocclusion), and the parameters temporal_pixel reads (svgf_params.h; max_history is an int

@@ -3,9 +3,9 @@
 // 7x7 neighbourhood with bilateral weights w = w_z w_n [SVGF17 Eq. 3, 4] (edge_stopping.cpp). One invocation
 // per pixel for both streams, direct and indirect: the bilateral weights depend on the G-buffer alone, so they
 // are computed once for both.
-//   in:  bindings 0-1: illumination C' (temporal output), 2-3: moments (mu1', mu2', n) of the direct and the
-//        indirect stream; 4-5: surface, depth gradient;
-//   out: bindings 6-7: illumination (C', sigma'^2), direct and indirect. Layout: planes_shared.h, variance_shared.h.
+//   in:  bindings 0: illumination C' (temporal output) of both streams, 1-2: moments (mu1', mu2', n) of the direct
+//        and the indirect stream; 3-4: surface, depth gradient;
+//   out: binding 5: illumination (C', sigma'^2) of both streams. Layout: planes_shared.h, variance_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -15,14 +15,12 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_ILLUMINATION(0, direct_in)
-RTDR_INPUT_ILLUMINATION(1, indirect_in)
-RTDR_INPUT_RGBA(2, moments_direct)
-RTDR_INPUT_RGBA(3, moments_indirect)
-RTDR_INPUT_RGBA(4, surface)
-RTDR_INPUT_RG(5, depth_grad)
-RTDR_OUTPUT_ILLUMINATION(6, direct_out)
-RTDR_OUTPUT_ILLUMINATION(7, indirect_out)
+RTDR_INPUT_ILLUMINATION(0, illumination_in)
+RTDR_INPUT_RGBA(1, moments_direct)
+RTDR_INPUT_RGBA(2, moments_indirect)
+RTDR_INPUT_RGBA(3, surface)
+RTDR_INPUT_RG(4, depth_grad)
+RTDR_OUTPUT_ILLUMINATION(5, illumination_out)
 
 layout(push_constant) uniform Push { VariancePush push; };
 
@@ -130,6 +128,6 @@ void main() {
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = index_of(pixel.x, pixel.y);
   const vec2 sigma2 = variance_pixel(pixel.x, pixel.y, surface(i));
-  direct_out(i, vec4(direct_in(i).rgb, sigma2.x));
-  indirect_out(i, vec4(indirect_in(i).rgb, sigma2.y));
+  const Illumination c = illumination_in(i);
+  illumination_out(i, Illumination(vec4[2](vec4(c.stream[0].rgb, sigma2.x), vec4(c.stream[1].rgb, sigma2.y))));
 }

@@ -2,9 +2,9 @@
 // once: the 7x7 footprint's radius and the push-constant block. Both compilers include this file; GLSL has the C
 // preprocessor, and core/shader_shared.h maps the types.
 //
-// Bindings (layout of each plane: planes_shared.h): 0-1 illumination C' and 2-3 moments (mu1', mu2', n) of the
-// direct and the indirect stream (TemporalOutput), 4 surface, 5 depth gradient, all inputs (RTDR_INPUT_*); 6-7 the
-// illumination records (C', sigma'^2) written.
+// Bindings (layout of each plane: planes_shared.h): 0 illumination C' of both streams, 1-2 moments (mu1', mu2', n)
+// of the direct and the indirect stream (TemporalOutput), 3 surface, 4 depth gradient, all inputs (RTDR_INPUT_*); 5
+// the illumination records (C', sigma'^2) of both streams written.
 #ifndef RTDR_FILTERS_SVGF_VARIANCE_SHARED_H
 #define RTDR_FILTERS_SVGF_VARIANCE_SHARED_H
 

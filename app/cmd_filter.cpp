@@ -17,14 +17,6 @@
 namespace rtdr {
 namespace {
 
-// The SVGF tunables as flags, one per row of the table in filters/svgf/svgf_params.h.
-void add_svgf_flags(CLI::App* sub, SvgfParams& p) {
-#define RTDR_SVGF_FLAG(type, name, def, lo, hi, symbol, source) \
-  sub->add_option("--" #name, p.name, std::string(source))->capture_default_str()->group("SVGF parameters");
-  RTDR_SVGF_PARAMS(RTDR_SVGF_FLAG)
-#undef RTDR_SVGF_FLAG
-}
-
 struct FilterOptions {
   std::string method = "svgf";
   std::string backend = "cpu";
@@ -35,8 +27,6 @@ struct FilterOptions {
 };
 
 void run_filter(const FilterOptions& o) {
-  if (o.dump && o.backend != "cpu")
-    throw Error("--dump-passes needs --backend cpu: the Vulkan pipeline keeps its buffers on the device");
   const BackendMethod backend = make_backend_method(o.backend, o.method, o.params);
   Method* method = backend.method.get();
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);

@@ -2,6 +2,8 @@
 // and returns the function that runs it once the whole command line has been parsed.
 #pragma once
 
+#include "filters/svgf/svgf_params.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -20,6 +22,7 @@ Command add_bench_command(CLI::App& app);
 Command add_filter_command(CLI::App& app);
 Command add_probe_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 // Shared option parsing, with one-line rtdr::Error messages naming the flag.
 struct Size {
@@ -32,5 +35,7 @@ struct FrameRange {
   int last;  // inclusive
 };
 FrameRange parse_frames(const std::string& text);  // "A-B" or "A", 0 <= A <= B
+// The SVGF tunables as flags of `sub`, one per row of the table in filters/svgf/svgf_params.h.
+void add_svgf_flags(CLI::App* sub, SvgfParams& p);
 
 }  // namespace rtdr

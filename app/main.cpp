@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
 
   const std::vector<rtdr::Command> commands = {rtdr::add_render_command(app), rtdr::add_filter_command(app),
                                                rtdr::add_probe_command(app), rtdr::add_eval_command(app),
-                                               rtdr::add_bench_command(app)};
+                                               rtdr::add_bench_command(app), rtdr::add_compare_command(app)};
 
   try {
     app.parse(argc, argv);

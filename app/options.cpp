@@ -41,4 +41,11 @@ FrameRange parse_frames(const std::string& text) {
   return r;
 }
 
+void add_svgf_flags(CLI::App* sub, SvgfParams& p) {
+#define RTDR_SVGF_FLAG(type, name, def, lo, hi, symbol, source) \
+  sub->add_option("--" #name, p.name, std::string(source))->capture_default_str()->group("SVGF parameters");
+  RTDR_SVGF_PARAMS(RTDR_SVGF_FLAG)
+#undef RTDR_SVGF_FLAG
+}
+
 }  // namespace rtdr

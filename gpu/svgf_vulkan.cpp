@@ -5,7 +5,9 @@
 #include "gpu/svgf_planes.h"
 
 #include <chrono>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace rtdr {
 
@@ -17,7 +19,45 @@ using PlanePtr = std::unique_ptr<GpuBuffer>;
 // of the results into readback memory.
 uint32_t commands_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_levels) + 2; }
 
+// The golden dump's layer prefix of each stream (SvgfFilter::filter, docs/buffers.md).
+std::string stream_layer(int stream) { return stream == kDirectStream ? "filter.direct." : "filter.indirect."; }
+
 }  // namespace
+
+// The copies behind filter()'s dump. copy() records a copy of a plane into a readback buffer, with what to make of
+// it; once the batch has run, unpack() makes the layers. The readback buffers are kept for the next frame's dump.
+class SvgfVulkan::Dump {
+ public:
+  using Unpack = std::function<void(const GpuBuffer& readback, Frame& dump)>;
+
+  explicit Dump(VulkanContext& context) : context_(context) {}
+  // Copies per frame: the temporal output, the two moments planes, the variance, each level's output and
+  // prefiltered variance, the filtered output and the tone-mapped colour.
+  static uint32_t commands(const SvgfParams& p) { return 6 + 2 * uint32_t(p.atrous_levels); }
+
+  void begin() {
+    used_ = 0;
+    unpacks_.clear();
+  }
+  void copy(ComputeBatch& batch, const GpuBuffer& plane, Unpack unpack) {
+    PlanePtr& readback = used_ < readbacks_.size() ? readbacks_[used_] : readbacks_.emplace_back();
+    // The plane's format too: unpacking reads it (an illumination plane's fp16 or fp32 records).
+    if (!readback || readback->floats() != plane.floats() || readback->format() != plane.format())
+      readback = std::make_unique<GpuBuffer>(context_, plane.floats(), plane.format(), Memory::Readback);
+    batch.copy(plane, *readback, "dump");
+    unpacks_.push_back(std::move(unpack));
+    ++used_;
+  }
+  void unpack(Frame& dump) const {
+    for (size_t i = 0; i < unpacks_.size(); ++i) unpacks_[i](*readbacks_[i], dump);
+  }
+
+ private:
+  VulkanContext& context_;
+  std::vector<PlanePtr> readbacks_;
+  std::vector<Unpack> unpacks_;  // one per readback buffer in use this frame
+  size_t used_ = 0;
+};
 
 // Every device plane. [parity] pairs alternate between frames: [frame parity] is written this frame, the other
 // holds the previous frame's (the history). [stream]: 0 direct, 1 indirect; an illumination plane holds both.
@@ -64,7 +104,7 @@ SvgfVulkan::SvgfVulkan(VulkanContext& context, const SvgfOptions& options)
     : context_(context),
       options_(options),
       shaders_(context),
-      batch_(context, commands_per_frame(options.svgf)) {
+      batch_(context, commands_per_frame(options.svgf) + Dump::commands(options.svgf)) {
   validate(options_.svgf);
   validate(options_.tonemap);
   validate(options_.taa_params);
@@ -77,7 +117,6 @@ SvgfVulkan::~SvgfVulkan() = default;
 void SvgfVulkan::reset() { frames_ = 0; }
 
 Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
-  if (dump) throw Error("--dump-passes needs --backend cpu: the Vulkan pipeline keeps its buffers on the device");
   times_.clear();
   const int w = in.width(), h = in.height();
   if (buffers_ && frames_ > 0 && (buffers_->width != w || buffers_->height != h))
@@ -86,6 +125,14 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                 std::to_string(buffers_->height) + ")");
   if (!buffers_ || buffers_->width != w || buffers_->height != h) buffers_ = std::make_unique<Buffers>(context_, w, h);
   Buffers& b = *buffers_;
+  // With a dump, each intermediate plane is copied out after the dispatch that writes it (Dump).
+  Dump* d = nullptr;
+  if (dump) {
+    if (!dump_) dump_ = std::make_unique<Dump>(context_);
+    d = dump_.get();
+    d->begin();
+    if (dump->width() != w || dump->height() != h) *dump = Frame(w, h);
+  }
   const int cur = frames_ & 1, prev = cur ^ 1;
   const bool has_history = frames_ > 0;
 
@@ -115,17 +162,57 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                     TemporalPush{uw, uh, has_history ? uw : 0u, has_history ? uh : 0u, has_history ? 1u : 0u,
                                  uint32_t(p.max_history), p.alpha, p.alpha_moments, p.temporal_depth_relative,
                                  p.temporal_normal_cosine});
+  if (d) {
+    d->copy(batch_, temporal_out, [w, h](const GpuBuffer& r, Frame& f) {
+      for (const int s : {kDirectStream, kIndirectStream})
+        set_rgb_plane(f, stream_layer(s) + "temporal", unpack_illumination(r, w, h, s));
+    });
+    for (const int s : {kDirectStream, kIndirectStream})
+      d->copy(batch_, *b.moments[cur][s], [w, h, s](const GpuBuffer& r, Frame& f) {  // (mu1', mu2', n, 0)
+        set_float_plane(f, stream_layer(s) + "moments.mu1", unpack_channel(r, w, h, 4, 0));
+        set_float_plane(f, stream_layer(s) + "moments.mu2", unpack_channel(r, w, h, 4, 1));
+        set_float_plane(f, stream_layer(s) + "history_length", unpack_channel(r, w, h, 4, 2));
+      });
+  }
   shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, *b.variance,
                     VariancePush{uw, uh, uint32_t(p.variance_min_history), p.sigma_z, p.sigma_n, p.epsilon});
+  if (d)
+    d->copy(batch_, *b.variance, [w, h](const GpuBuffer& r, Frame& f) {
+      for (const int s : {kDirectStream, kIndirectStream})
+        set_float_plane(f, stream_layer(s) + "variance", unpack_variance(r, w, h, s));
+    });
   const GpuBuffer* filtered = p.atrous_levels > 0 ? b.variance.get() : &temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
     const GpuBuffer* out = level == p.history_level ? b.history[cur].get() : b.level[level & 1].get();
     shaders_.atrous(batch_, *filtered, g, *out, *b.prefiltered,
-                    AtrousPush{uw, uh, level, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, 0u}, p.kernel_size);
+                    AtrousPush{uw, uh, level, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, d ? 1u : 0u},
+                    p.kernel_size);
     filtered = out;
+    if (d) {
+      const std::string l = "level" + std::to_string(level);
+      d->copy(batch_, *out, [w, h, l](const GpuBuffer& r, Frame& f) {
+        for (const int s : {kDirectStream, kIndirectStream}) {
+          set_rgb_plane(f, stream_layer(s) + l, unpack_illumination(r, w, h, s));
+          set_float_plane(f, stream_layer(s) + l + ".variance", unpack_variance(r, w, h, s));
+        }
+      });
+      d->copy(batch_, *b.prefiltered, [w, h, l](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
+        for (const int s : {kDirectStream, kIndirectStream})
+          set_float_plane(f, stream_layer(s) + l + ".prefiltered_variance", unpack_channel(r, w, h, 2, s));
+      });
+    }
   }
+  if (d)
+    d->copy(batch_, *filtered, [w, h](const GpuBuffer& r, Frame& f) {
+      for (const int s : {kDirectStream, kIndirectStream})
+        set_rgb_plane(f, stream_layer(s) + "filtered", unpack_illumination(r, w, h, s));
+    });
   shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});
   shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{uw, uh, options_.tonemap.exposure});
+  if (d)
+    d->copy(batch_, *b.tonemapped, [w, h](const GpuBuffer& r, Frame& f) {
+      set_rgb_plane(f, "filter.tonemapped", unpack_rgb(r, w, h));
+    });
   // Without a TAA history the TAA shader returns its input: the first frame's display is the tone-mapped colour.
   const TaaParams& t = options_.taa_params;
   shaders_.taa(batch_, *b.tonemapped, *b.display[prev], *b.motion, *b.display[cur],
@@ -153,6 +240,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   const auto t3 = std::chrono::steady_clock::now();
   // "transfer": the copies' device time and the host's packing and unpacking.
   times_["transfer"] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
+  if (d) d->unpack(*dump);
   return out;
 }
 

@@ -5,13 +5,19 @@
 //
 // Every history stays on the device between frames (colour history, moments, the previous G-buffer, the TAA
 // history): per frame the host uploads the input frame's planes, runs one batch of 5 + atrous_levels dispatches
-// and two copies, and reads back the colour and the display colour. Buffers are made for the first frame's size; a later frame
-// of another size throws, as SvgfFilter does.
+// and two copies, and reads back the colour and the display colour. Buffers are made for the first frame's size; a
+// later frame of another size throws, as SvgfFilter does.
 //
 // pass_times(): each pass's device time (timestamps), summed over its dispatches and streams, plus "transfer": the
 // host's wall time to pack the inputs and unpack the outputs, and the device time of copying the outputs into
-// host-cached memory first. Intermediate buffers are not dumped and passes are
-// not probed: those stay with the golden SvgfFilter (--backend cpu).
+// host-cached memory first.
+//
+// filter(in, dump) with a dump (`rtdr filter --backend vulkan --dump-passes`, `rtdr compare`) gives the golden
+// SvgfFilter's intermediate layers (docs/buffers.md, "Filter passes"), read back from the device: each plane is
+// copied into host-cached memory right after the dispatch that writes it, since the levels' planes are reused
+// within the frame. The copies run in the same batch, timed as "dump", and change no output. They hold what the
+// device's records hold: with fp16 records, every illumination colour and variance as stored in halves. Passes are
+// not probed: that stays with the golden SvgfFilter (--backend cpu).
 #pragma once
 
 #include "filters/method.h"
@@ -40,11 +46,13 @@ class SvgfVulkan : public Method {
 
  private:
   struct Buffers;  // every device plane, made for one frame size
+  class Dump;      // the copies behind filter()'s dump, and their readback buffers
   VulkanContext& context_;
   SvgfOptions options_;
   SvgfShaders shaders_;
   ComputeBatch batch_;
   std::unique_ptr<Buffers> buffers_;
+  std::unique_ptr<Dump> dump_;
   int frames_ = 0;  // frames since the last reset: 0 means no history
   int submits_ = 1;
 };

@@ -1,7 +1,8 @@
-// `rtdr filter` and `rtdr probe` (app/cmd_filter.cpp, app/sequence.cpp) as a user meets them, running the real
-// binary (RTDR_EXE) on a 3-frame cornell sequence rendered at 32x18: the files and layers a good run writes,
-// the probe's JSON and text, and bad input: one line on stderr starting "rtdr: error: ", a non-zero exit and
-// no output files.
+// `rtdr filter`, `rtdr probe` and the bad input of `rtdr compare` (app/cmd_filter.cpp, app/cmd_compare.cpp,
+// app/sequence.cpp) as a user meets them, running the real binary (RTDR_EXE) on a 3-frame cornell sequence
+// rendered at 32x18: the files and layers a good run writes, the probe's JSON and text, and bad input: one line on
+// stderr starting "rtdr: error: ", a non-zero exit and no output files. rtdr compare's report is checked in
+// tests/gpu_svgf_test.cpp.
 #include "core/exr_io.h"
 #include "core/frame.h"
 #include "gpu/vulkan_context.h"
@@ -257,7 +258,9 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
       "filter --in " + seq + " --out " + out + " --sigma_l -1",                         // out of range
       "filter --in " + seq + " --out " + out + " --backend metal",                      // unknown back end
       "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // svgf only
-      "filter --in " + seq + " --out " + out + " --backend vulkan --dump-passes",       // dumps: cpu only
+      "compare --in " + seq + " --csv " + out + "/c.csv --rel-floor 0",                 // floor must be > 0
+      "compare --in " + nan.string() + " --csv " + out + "/c.csv",                      // NaN in direct.G
+      "compare --in " + resized.string() + " --csv " + out + "/c.csv",                  // frame 1 is 16x9
       "probe --in " + seq + " --frame 2 --pixel 999,999",                               // outside the frame
       "probe --in " + seq + " --frame 2 --pixel 5,5 --pass nonsense",                   // no such pass
       "probe --in " + seq + " --frame 7 --pixel 5,5",                                   // no such frame

@@ -35,10 +35,11 @@ inline std::string read_text(const fs::path& p) {
   return ss.str();
 }
 
-// Runs `rtdr args`, its stdout and stderr captured in files of `dir`.
-inline RunResult run_rtdr(const std::string& args, const fs::path& dir) {
+// Runs `rtdr args`, its stdout and stderr captured in files of `dir`; `env` ("NAME=value ...") is set for it alone.
+inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const std::string& env = "") {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(RTDR_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(RTDR_EXE) + " " + args + " >" +
+                          out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
 }

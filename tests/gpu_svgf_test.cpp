@@ -53,15 +53,27 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include "cli_fixtures.h"
 #include "gpu_fixtures.h"
+
+#include "app/sequence.h"
+#include "core/exr_io.h"
+#include "eval/frame_diff.h"
+#include "filters/svgf/modulate.h"
+#include "filters/svgf/prefilter.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
+using Catch::Detail::Approx;
 using namespace rtdr;
 using namespace rtdr::gpu_test;
 
@@ -198,10 +210,166 @@ TEST_CASE("the Vulkan pipeline refuses what only the golden pipeline does") {
   CHECK_THROWS_WITH(SvgfVulkan(*context, accum), Catch::Contains("svgf only"));
   SvgfVulkan gpu(*context, SvgfOptions{});
   const Frame in = render_frame(load_scene("cornell"), 0, 16, 9, {});
-  Frame dump;
-  CHECK_THROWS_WITH(gpu.filter(in, &dump), Catch::Contains("--backend cpu"));
   gpu.filter(in, nullptr);
   CHECK_THROWS_WITH(gpu.filter(render_frame(load_scene("cornell"), 1, 18, 9, {}), nullptr),
                     Catch::Contains("frame size changed"));
   check_no_validation_messages(*context);
+}
+
+// The dump (--dump-passes, rtdr compare) against the golden dump, frame by frame. What is asserted, per channel,
+// relative to max(|golden|, kRelFloor) as in compare_pipelines:
+// - the colours (temporal, every level, filtered, tone-mapped) and mu1', the luminance of the integrated colour:
+//   within the pipeline's colour bound, for the same reasons (convex combinations of the same inputs; tone mapping
+//   x / (1 + x) only shrinks a relative error, and its port adds at most 1e-6: gpu_tonemap_test);
+// - mu2', a convex combination of squared luminances: the square of that bound, (1 + e)^2 - 1;
+// - the history length: exactly, since the consistency tests read the G-buffer alone, which both sides read as
+//   the same fp32 values, and the port's tests are bit-exact (gpu_temporal_test);
+// - not the variances: mu2' - mu1'^2 cancels where the luminance hardly varies, so their relative difference has
+//   no bound independent of the frame (gpu_variance_test and gpu_atrous_test check them on equal inputs); nor the
+//   display (see the banner).
+// And the dump is what the passes consumed: remodulating its filtered streams gives the pipeline's colour, and tone
+// mapping that colour its tone-mapped layer, within those ports' 1e-6 (gpu_modulate_test, gpu_tonemap_test); each
+// level's prefiltered variance is the golden prefilter of the variance that level read (the variance pass's output,
+// then the level before's), within the a-trous port's 5e-5 relative to max(|golden|, 1e-3) (gpu_atrous_test: the
+// prefilter has no transcendental and matches exactly); the filtered stream is the last level's output.
+TEST_CASE("the Vulkan pipeline's dump holds the golden dump's layers, within bounds, and changes no result") {
+  const auto context = validated_context();
+  if (!context) return;
+  const double bound = pipeline_rel_error(*context);
+  const Scene scene = load_scene("pillars");
+  SvgfFilter golden{SvgfOptions{}};
+  SvgfVulkan plain(*context, SvgfOptions{}), dumped(*context, SvgfOptions{});
+  for (int f = 0; f < 4; ++f) {
+    const Frame in = render_frame(scene, f, 48, 27, {});
+    Frame expected_dump, dump;
+    golden.filter(in, &expected_dump);
+    const Frame out = dumped.filter(in, &dump), reference = plain.filter(in, nullptr);
+    CHECK(rgb_plane(out, "color").data == rgb_plane(reference, "color").data);
+    CHECK(rgb_plane(out, "display").data == rgb_plane(reference, "display").data);
+
+    const std::vector<ChannelDiff> diffs = diff_channels(dump, expected_dump, kRelFloor);  // throws on other names
+    CHECK(diffs.size() == expected_dump.float_channels().size());
+    int asserted = 0;
+    for (const ChannelDiff& d : diffs) {
+      const auto ends_with = [&](const std::string& tail) {
+        return d.channel.size() >= tail.size() &&
+               d.channel.compare(d.channel.size() - tail.size(), tail.size(), tail) == 0;
+      };
+      INFO("frame " << f << ", " << d.channel << ": max relative difference " << d.rel.error << " at ("
+                    << d.rel.x << ", " << d.rel.y << "), max absolute " << d.abs.error);
+      if (ends_with(".R") || ends_with(".G") || ends_with(".B") || ends_with("moments.mu1")) {
+        CHECK(d.rel.error <= bound);
+        ++asserted;
+      } else if (ends_with("moments.mu2")) {
+        CHECK(d.rel.error <= (1.0 + bound) * (1.0 + bound) - 1.0);
+        ++asserted;
+      } else if (ends_with("history_length")) {
+        CHECK(d.abs.error == 0.0);
+        ++asserted;
+      }
+    }
+    // 2 streams x (temporal, 5 levels, filtered) x RGB + mu1, mu2, n, and the tone-mapped RGB.
+    CHECK(asserted == 2 * (7 * 3 + 3) + 3);
+
+    const RgbPlane colour = remodulate(rgb_plane(dump, "filter.direct.filtered"),
+                                       rgb_plane(dump, "filter.indirect.filtered"), rgb_plane(in, "albedo"),
+                                       rgb_plane(in, "emission"));
+    const double any = std::numeric_limits<double>::infinity();  // the relative bound alone
+    check_rgb_within(rgb_plane(out, "color"), colour, any, 1e-6);
+    check_rgb_within(rgb_plane(dump, "filter.tonemapped"), tonemap(rgb_plane(out, "color"), TonemapParams{}), any,
+                     1e-6);
+    for (const std::string stream : {"filter.direct.", "filter.indirect."}) {
+      std::string input = stream + "variance";
+      for (int level = 0; level < SvgfParams{}.atrous_levels; ++level) {
+        const std::string l = stream + "level" + std::to_string(level);
+        Frame expected(in.width(), in.height()), got(in.width(), in.height());
+        expected.add_float("v").data = prefilter_variance(dump.float_channel(input)).data;
+        got.add_float("v").data = dump.float_channel(l + ".prefiltered_variance").data;
+        INFO(l << " prefiltered variance against the golden prefilter of " << input);
+        CHECK(diff_channels(got, expected, 1e-3).at(0).rel.error <= 5e-5);
+        input = l + ".variance";
+      }
+      CHECK(rgb_plane(dump, stream + "filtered").data ==
+            rgb_plane(dump, stream + "level" + std::to_string(SvgfParams{}.atrous_levels - 1)).data);
+    }
+  }
+  check_no_validation_messages(*context);
+}
+
+namespace {
+
+// The rows of `rtdr compare --csv`, by (frame, channel).
+std::map<std::pair<int, std::string>, std::vector<std::string>> read_compare_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  REQUIRE(line == "frame,channel,max_abs,abs_x,abs_y,abs_cpu,abs_vulkan,max_rel,rel_x,rel_y,rel_cpu,rel_vulkan");
+  std::map<std::pair<int, std::string>, std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    REQUIRE(cells.size() == 12);
+    rows[{std::stoi(cells[0]), cells[1]}] = cells;
+  }
+  return rows;
+}
+
+}  // namespace
+
+// rtdr compare, run as a user would, against `rtdr filter` run on each back end: its CSV's worst pixel of a
+// channel is where the two filters' EXR files differ most, by as much, with their values. The device's build is
+// chosen through RTDR_VK_INPUTS and RTDR_VK_ILLUMINATION, which the report's first line must name.
+TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as their own outputs show") {
+  const auto context = validated_context();
+  if (!context) return;
+  using namespace rtdr::cli;
+  const std::string env = std::string("RTDR_VK_INPUTS=") + shader_inputs_name(context->shader_inputs()) +
+                          " RTDR_VK_ILLUMINATION=" + illumination_records_name(context->illumination_records());
+  const fs::path dir = scratch("rtdr_gpu_svgf_test", std::string("compare_") +
+                                                         shader_inputs_name(context->shader_inputs()) + "_" +
+                                                         illumination_records_name(context->illumination_records()));
+  const std::string in = (dir / "in").string(), csv = (dir / "compare.csv").string();
+  REQUIRE(run_rtdr("render --scene pillars --frames 0-2 --size 40x24 --out " + in, dir).exit_code == 0);
+
+  const RunResult r = run_rtdr("compare --in " + in + " --csv " + csv, dir, env);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains(std::string(shader_inputs_name(context->shader_inputs())) + " inputs, " +
+                                    illumination_records_name(context->illumination_records()) +
+                                    " illumination records"));
+  const auto rows = read_compare_csv(csv);
+  CHECK(rows.size() == 3 * 79);  // 3 frames x (the dump's 73 channels, colour and display)
+
+  for (const std::string backend : {"cpu", "vulkan"})
+    REQUIRE(run_rtdr("filter --backend " + backend + " --in " + in + " --out " + (dir / backend).string(), dir, env)
+                .exit_code == 0);
+  for (int f = 0; f < 3; ++f) {
+    const Frame cpu = read_exr(frame_path((dir / "cpu").string(), f, "exr")),
+                gpu = read_exr(frame_path((dir / "vulkan").string(), f, "exr"));
+    for (const ChannelDiff& d : diff_channels(gpu, cpu, 1e-2)) {
+      INFO("frame " << f << ", " << d.channel);
+      const std::vector<std::string>& row = rows.at({f, d.channel});
+      CHECK(std::stod(row[2]) == Approx(d.abs.error).epsilon(1e-7));
+      CHECK(std::stoi(row[3]) == d.abs.x);
+      CHECK(std::stoi(row[4]) == d.abs.y);
+      CHECK(std::stof(row[5]) == d.abs.reference);
+      CHECK(std::stof(row[6]) == d.abs.test);
+      CHECK(std::stod(row[7]) == Approx(d.rel.error).epsilon(1e-7));
+    }
+  }
+
+  // --max-rel-error: the same report, then a one-line error and exit 1.
+  const RunResult strict = run_rtdr("compare --in " + in + " --max-rel-error 0", dir, env);
+  CHECK(strict.exit_code == 1);
+  CHECK_THAT(strict.err, Catch::StartsWith("rtdr: error: ") && Catch::Contains("beyond --max-rel-error 0"));
+  CHECK(std::count(strict.err.begin(), strict.err.end(), '\n') == 1);
+  CHECK_THAT(strict.out, Catch::Contains("color.R"));
+
+  // Bad input: one line, exit 1, no CSV.
+  const std::string missing_csv = (dir / "missing.csv").string();
+  const RunResult bad = run_rtdr("compare --in " + (dir / "nowhere").string() + " --csv " + missing_csv, dir, env);
+  CHECK(bad.exit_code == 1);
+  CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(missing_csv));
 }

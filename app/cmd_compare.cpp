@@ -1,0 +1,143 @@
+// rtdr compare: runs SVGF over a rendered sequence on both back ends, the golden passes (cpu) and the shader ports
+// (vulkan), frame by frame on the same inputs, and reports per channel how far the ports' outputs and intermediate
+// buffers are from the golden ones (eval/frame_diff.h): every layer `rtdr filter --dump-passes` writes
+// (docs/buffers.md), the colour and the display. Each back end keeps its own history, as `rtdr filter` would, so a
+// frame's differences include what the earlier frames' differences left in the histories.
+//
+// Printed: one row per channel, its worst absolute and relative difference over the frames, each with the frame,
+// the pixel and the two values there. --csv writes one row per frame and channel. --max-rel-error makes the
+// command fail (exit 1, after the report) when any channel's relative difference exceeds it: a port check for
+// scripts. The bounds the tests hold the ports to, and why, are in tests/gpu_svgf_test.cpp.
+#include "app/backend.h"
+#include "app/commands.h"
+#include "app/sequence.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "eval/frame_diff.h"
+#include "filters/method.h"
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace rtdr {
+namespace {
+
+struct CompareOptions {
+  std::string method = "svgf";
+  std::string in;
+  std::string frames;
+  std::string csv;
+  double rel_floor = 1e-2;
+  double max_rel_error = -1.0;  // < 0: not checked
+  SvgfParams params;
+};
+
+// A channel's worst pixel over the frames, and the frame it is in.
+struct Worst {
+  PixelError error;
+  int frame = -1;
+};
+
+// A method's output frame with its dump's layers added: every channel the comparison covers.
+Frame filter_with_dump(Method& method, const Frame& in) {
+  Frame dump(in.width(), in.height());
+  Frame out = method.filter(in, &dump);
+  for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
+  return out;
+}
+
+std::string where(const Worst& w) {
+  if (w.frame < 0) return "-";
+  char text[64];
+  std::snprintf(text, sizeof text, "%d (%d, %d)", w.frame, w.error.x, w.error.y);
+  return text;
+}
+
+// A value at a worst pixel, or "-" when no pixel differs.
+std::string value(const Worst& w, float v) {
+  if (w.frame < 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.7g", v);
+  return text;
+}
+
+void run_compare(const CompareOptions& o) {
+  if (!(o.rel_floor > 0.0)) throw Error("--rel-floor must be positive");
+  const BackendMethod golden = make_backend_method("cpu", o.method, o.params);
+  const BackendMethod port = make_backend_method("vulkan", o.method, o.params);
+  const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
+  // Every input is read and checked before anything runs, so bad input leaves no CSV.
+  SequenceShape shape;
+  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape);
+
+  const VulkanContext& device = *port.context;
+  std::printf("%s on %zu frame(s) of %s: cpu (golden) against vulkan (%s, %s inputs, %s illumination records)\n",
+              o.method.c_str(), frames.size(), o.in.c_str(), device.device_name().c_str(),
+              shader_inputs_name(device.shader_inputs()), illumination_records_name(device.illumination_records()));
+  std::printf("relative difference: |vulkan - cpu| / max(|cpu|, %g)\n", o.rel_floor);
+
+  std::ostringstream csv;
+  csv << "frame,channel,max_abs,abs_x,abs_y,abs_cpu,abs_vulkan,max_rel,rel_x,rel_y,rel_cpu,rel_vulkan\n";
+  csv.precision(9);
+  std::map<std::string, Worst> worst_abs, worst_rel;
+  for (const SequenceFrame& f : frames) {
+    const Frame in = read_exr(f.path);
+    const Frame reference = filter_with_dump(*golden.method, in);
+    const Frame test = filter_with_dump(*port.method, in);
+    for (const ChannelDiff& d : diff_channels(test, reference, o.rel_floor)) {
+      if (keep_worst(worst_abs[d.channel].error, d.abs)) worst_abs[d.channel].frame = f.index;
+      if (keep_worst(worst_rel[d.channel].error, d.rel)) worst_rel[d.channel].frame = f.index;
+      csv << f.index << ',' << d.channel << ',' << d.abs.error << ',' << d.abs.x << ',' << d.abs.y << ','
+          << d.abs.reference << ',' << d.abs.test << ',' << d.rel.error << ',' << d.rel.x << ',' << d.rel.y << ','
+          << d.rel.reference << ',' << d.rel.test << '\n';
+    }
+  }
+
+  std::printf("%-42s %10s %-18s %13s %13s %10s %s\n", "channel", "max abs", "frame (x, y)", "cpu", "vulkan",
+              "max rel", "frame (x, y)");
+  const Worst* beyond = nullptr;  // the worst channel beyond --max-rel-error
+  std::string beyond_channel;
+  int channels_beyond = 0;
+  for (const auto& [channel, a] : worst_abs) {
+    const Worst& r = worst_rel[channel];
+    std::printf("%-42s %10.3g %-18s %13s %13s %10.3g %s\n", channel.c_str(), a.error.error, where(a).c_str(),
+                value(a, a.error.reference).c_str(), value(a, a.error.test).c_str(), r.error.error, where(r).c_str());
+    if (o.max_rel_error >= 0.0 && r.error.error > o.max_rel_error) {
+      ++channels_beyond;
+      if (!beyond || r.error.error > beyond->error.error) {
+        beyond = &r;
+        beyond_channel = channel;
+      }
+    }
+  }
+  if (!o.csv.empty()) write_text_file(o.csv, csv.str());
+  if (beyond) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%d channel(s) beyond --max-rel-error %g; the worst: %s, %.3g at frame %s",
+                  channels_beyond, o.max_rel_error, beyond_channel.c_str(), beyond->error.error,
+                  where(*beyond).c_str());
+    throw Error(text);
+  }
+}
+
+}  // namespace
+
+Command add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* sub = app.add_subcommand("compare", "run SVGF on the golden passes and the Vulkan ports, report the "
+                                                "per-channel differences of every output and intermediate buffer");
+  sub->add_option("--method", o->method, "the method (svgf: the one with Vulkan ports)")->capture_default_str();
+  sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
+  sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");
+  sub->add_option("--csv", o->csv, "also write one row per frame and channel to this CSV file");
+  sub->add_option("--rel-floor", o->rel_floor, "relative differences are to max(|cpu|, this)")->capture_default_str();
+  sub->add_option("--max-rel-error", o->max_rel_error,
+                  "fail (exit 1, after the report) when a channel's relative difference exceeds this");
+  add_svgf_flags(sub, o->params);
+  return {sub, [o] { run_compare(*o); }};
+}
+
+}  // namespace rtdr

@@ -2,9 +2,11 @@
 # Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
 # no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
 # take .gl/ and .deps/ along. Usage, from the repository root:
-#   bash tools/gpu_device.sh [info] [test] [bench]      (default: all three; none of them: build only)
-#     info   the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
-#     test   a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
+#   bash tools/gpu_device.sh [info] [test] [compare] [bench]   (default: all four; none of them: build only)
+#     info     the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
+#     test     a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
+#     compare  rtdr compare on 10 frames of pillars at 320x180, every buffer of the ports against the golden
+#              passes, with the GPU's default fp16 illumination records and with fp32 records
 #     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
 #            inputs, fp16 illumination records), then the ports alone with fp32 records
 #            (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
@@ -15,7 +17,7 @@ cd "$(dirname "$0")/.."
 OUT=${OUT:-out/device}
 mkdir -p "$OUT"
 steps=("$@")
-((${#steps[@]})) || steps=(info test bench)
+((${#steps[@]})) || steps=(info test compare bench)
 [ "${steps[*]}" = build ] && steps=()
 wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
 
@@ -72,6 +74,17 @@ status=0
 if wants test; then
   ctest --test-dir "$BUILD" -L vulkan --output-on-failure -j 4 >"$OUT/ctest.log" 2>&1 || status=1
   grep -E "tests passed|tests failed|Failed|\*\*\*" "$OUT/ctest.log" | head -30
+fi
+
+if wants compare; then
+  # The rendered frames stay outside $OUT, which comes back from the machine.
+  frames=/tmp/rtdr_compare_in
+  "$BUILD/app/rtdr" render --scene pillars --frames 0-9 --size 320x180 --out "$frames" >/dev/null || status=1
+  for records in fp16 fp32; do
+    RTDR_VK_ILLUMINATION=$records "$BUILD/app/rtdr" compare --in "$frames" --csv "$OUT/compare_$records.csv" \
+      >"$OUT/compare_$records.txt" 2>&1 || status=1
+    grep -E "^(svgf|color|display)" "$OUT/compare_$records.txt"
+  done
 fi
 
 if wants bench; then

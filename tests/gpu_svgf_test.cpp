@@ -319,7 +319,8 @@ std::map<std::pair<int, std::string>, std::vector<std::string>> read_compare_csv
 
 // rtdr compare, run as a user would, against `rtdr filter` run on each back end: its CSV's worst pixel of a
 // channel is where the two filters' EXR files differ most, by as much, with their values. The device's build is
-// chosen through RTDR_VK_INPUTS and RTDR_VK_ILLUMINATION, which the report's first line must name.
+// chosen through RTDR_VK_INPUTS and RTDR_VK_ILLUMINATION, which the report's first line must name, and a value
+// that names no build is a one-line error.
 TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as their own outputs show") {
   const auto context = validated_context();
   if (!context) return;
@@ -372,4 +373,13 @@ TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as
   CHECK(bad.exit_code == 1);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_FALSE(fs::exists(missing_csv));
+
+  // A build the environment names wrongly: one line naming the variable and its values.
+  for (const std::string variable : {"RTDR_VK_INPUTS", "RTDR_VK_ILLUMINATION"}) {
+    const RunResult wrong = run_rtdr("compare --in " + in, dir, variable + "=fp8");
+    CHECK(wrong.exit_code == 1);
+    CHECK_THAT(wrong.err, Catch::StartsWith("rtdr: error: " + variable + " must be ") &&
+                              Catch::Contains(", got \"fp8\""));
+    CHECK(std::count(wrong.err.begin(), wrong.err.end(), '\n') == 1);
+  }
 }

@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace rtdr {
@@ -31,7 +32,7 @@ struct CompareOptions {
   std::string frames;
   std::string csv;
   double rel_floor = 1e-2;
-  double max_rel_error = -1.0;  // < 0: not checked
+  std::optional<double> max_rel_error;  // not checked when not given
   SvgfParams params;
 };
 
@@ -66,6 +67,7 @@ std::string value(const Worst& w, float v) {
 
 void run_compare(const CompareOptions& o) {
   if (!(o.rel_floor > 0.0)) throw Error("--rel-floor must be positive");
+  if (o.max_rel_error && !(*o.max_rel_error >= 0.0)) throw Error("--max-rel-error must be 0 or more");
   const BackendMethod golden = make_backend_method("cpu", o.method, o.params);
   const BackendMethod port = make_backend_method("vulkan", o.method, o.params);
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
@@ -105,7 +107,7 @@ void run_compare(const CompareOptions& o) {
     const Worst& r = worst_rel[channel];
     std::printf("%-42s %10.3g %-18s %13s %13s %10.3g %s\n", channel.c_str(), a.error.error, where(a).c_str(),
                 value(a, a.error.reference).c_str(), value(a, a.error.test).c_str(), r.error.error, where(r).c_str());
-    if (o.max_rel_error >= 0.0 && r.error.error > o.max_rel_error) {
+    if (o.max_rel_error && r.error.error > *o.max_rel_error) {
       ++channels_beyond;
       if (!beyond || r.error.error > beyond->error.error) {
         beyond = &r;
@@ -117,7 +119,7 @@ void run_compare(const CompareOptions& o) {
   if (beyond) {
     char text[160];
     std::snprintf(text, sizeof text, "%d channel(s) beyond --max-rel-error %g; the worst: %s, %.3g at frame %s",
-                  channels_beyond, o.max_rel_error, beyond_channel.c_str(), beyond->error.error,
+                  channels_beyond, *o.max_rel_error, beyond_channel.c_str(), beyond->error.error,
                   where(*beyond).c_str());
     throw Error(text);
   }

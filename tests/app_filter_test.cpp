@@ -259,6 +259,7 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
       "filter --in " + seq + " --out " + out + " --backend metal",                      // unknown back end
       "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // svgf only
       "compare --in " + seq + " --csv " + out + "/c.csv --rel-floor 0",                 // floor must be > 0
+      "compare --in " + seq + " --csv " + out + "/c.csv --max-rel-error -1",            // bound must be >= 0
       "compare --in " + nan.string() + " --csv " + out + "/c.csv",                      // NaN in direct.G
       "compare --in " + resized.string() + " --csv " + out + "/c.csv",                  // frame 1 is 16x9
       "probe --in " + seq + " --frame 2 --pixel 999,999",                               // outside the frame

@@ -23,6 +23,13 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
   return m;
 }
 
+Frame filter_with_dump(Method& method, const Frame& in) {
+  Frame dump(in.width(), in.height());
+  Frame out = method.filter(in, &dump);
+  for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
+  return out;
+}
+
 std::vector<std::string> parse_backends(const std::string& text) {
   std::vector<std::string> backends;
   std::stringstream ss(text);

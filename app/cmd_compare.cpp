@@ -42,14 +42,6 @@ struct Worst {
   int frame = -1;
 };
 
-// A method's output frame with its dump's layers added: every channel the comparison covers.
-Frame filter_with_dump(Method& method, const Frame& in) {
-  Frame dump(in.width(), in.height());
-  Frame out = method.filter(in, &dump);
-  for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
-  return out;
-}
-
 std::string where(const Worst& w) {
   if (w.frame < 0) return "-";
   char text[64];

@@ -41,10 +41,7 @@ void run_filter(const FilterOptions& o) {
               o.method == "none" ? "" : describe(o.params).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
-    Frame dump(in.width(), in.height());
-    Frame out = method->filter(in, o.dump ? &dump : nullptr);
-    if (o.dump)
-      for (const auto& [name, plane] : dump.float_channels()) out.add_float(name).data = plane.data;
+    const Frame out = o.dump ? filter_with_dump(*method, in) : method->filter(in);
     write_exr(frame_path(o.out, f.index, "exr"), out);
     write_display_png(frame_path(o.out, f.index, "png"), rgb_plane(out, "display"));
     double total = 0.0;

@@ -35,18 +35,15 @@ class SvgfVulkan::Dump {
   // prefiltered variance, the filtered output and the tone-mapped colour.
   static uint32_t commands(const SvgfParams& p) { return 6 + 2 * uint32_t(p.atrous_levels); }
 
-  void begin() {
-    used_ = 0;
-    unpacks_.clear();
-  }
+  void begin() { unpacks_.clear(); }
   void copy(ComputeBatch& batch, const GpuBuffer& plane, Unpack unpack) {
-    PlanePtr& readback = used_ < readbacks_.size() ? readbacks_[used_] : readbacks_.emplace_back();
+    const size_t used = unpacks_.size();  // readback buffers in use this frame
+    PlanePtr& readback = used < readbacks_.size() ? readbacks_[used] : readbacks_.emplace_back();
     // The plane's format too: unpacking reads it (an illumination plane's fp16 or fp32 records).
     if (!readback || readback->floats() != plane.floats() || readback->format() != plane.format())
       readback = std::make_unique<GpuBuffer>(context_, plane.floats(), plane.format(), Memory::Readback);
     batch.copy(plane, *readback, "dump");
     unpacks_.push_back(std::move(unpack));
-    ++used_;
   }
   void unpack(Frame& dump) const {
     for (size_t i = 0; i < unpacks_.size(); ++i) unpacks_[i](*readbacks_[i], dump);
@@ -55,8 +52,7 @@ class SvgfVulkan::Dump {
  private:
   VulkanContext& context_;
   std::vector<PlanePtr> readbacks_;
-  std::vector<Unpack> unpacks_;  // one per readback buffer in use this frame
-  size_t used_ = 0;
+  std::vector<Unpack> unpacks_;  // this frame's copies: unpacks_[i] reads readbacks_[i]
 };
 
 // Every device plane. [parity] pairs alternate between frames: [frame parity] is written this frame, the other

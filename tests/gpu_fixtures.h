@@ -3,6 +3,7 @@
 // per-channel comparison of a port's RGB output against its golden pass.
 #pragma once
 
+#include "eval/frame_diff.h"
 #include "filters/image.h"
 #include "filters/svgf/svgf_shared.h"
 #include "gpu/svgf_planes.h"
@@ -117,8 +118,7 @@ inline RgbErrors compare_rgb(const RgbPlane& gpu, const RgbPlane& golden) {
   RgbErrors e;
   for (size_t i = 0; i < golden.data.size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      double diff = std::abs(double(gpu.data[i][c]) - double(golden.data[i][c]));
-      if (std::isnan(diff)) diff = std::numeric_limits<double>::infinity();
+      const double diff = abs_difference(gpu.data[i][c], golden.data[i][c]);  // NaN: infinite
       e.abs[c] = std::max(e.abs[c], diff);
       if (golden.data[i][c] != 0.0f) e.rel[c] = std::max(e.rel[c], diff / std::abs(double(golden.data[i][c])));
     }

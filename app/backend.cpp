@@ -23,6 +23,19 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
   return m;
 }
 
+std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
+  if (spec.backend == "cpu") return make_method(spec.name, spec.svgf);
+  const SvgfOptions options = method_options(spec.name, spec.svgf);  // checks the method's name first
+  std::unique_ptr<VulkanContext>& context = contexts_[spec.illumination];
+  if (!context) {
+    VulkanOptions vulkan;
+    if (spec.illumination == "fp32") vulkan.illumination = IlluminationRecords::Fp32;
+    if (spec.illumination == "fp16") vulkan.illumination = IlluminationRecords::Fp16;
+    context = std::make_unique<VulkanContext>(vulkan);
+  }
+  return std::make_unique<SvgfVulkan>(*context, options);
+}
+
 Frame filter_with_dump(Method& method, const Frame& in) {
   Frame dump(in.width(), in.height());
   Frame out = method.filter(in, &dump);

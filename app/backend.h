@@ -1,10 +1,13 @@
 // Where a method runs: `--backend cpu` (the golden passes, filters/) or `--backend vulkan` (the shader ports,
-// gpu/svgf_vulkan.h; svgf only). rtdr filter and rtdr bench --stage filter both choose through here.
+// gpu/svgf_vulkan.h; svgf only). rtdr filter, compare and bench choose through here, and rtdr eval through
+// SpecMethods, by each method spec's backend=.
 #pragma once
 
+#include "eval/experiment.h"
 #include "filters/method.h"
 #include "gpu/vulkan_context.h"
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +26,18 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
 // The method's output frame for `in` with its dump's layers (every intermediate buffer, docs/buffers.md) added:
 // what `rtdr filter --dump-passes` writes and `rtdr compare` compares.
 Frame filter_with_dump(Method& method, const Frame& in);
+
+// The methods of rtdr eval's specs (eval/experiment.h), each on the back end it names: EvalConfig::make_method.
+// The Vulkan contexts, one per kind of illumination records asked for, are made when a spec first needs one;
+// every method made must be gone before this is.
+class SpecMethods {
+ public:
+  // Throws rtdr::Error like make_backend_method.
+  std::unique_ptr<Method> make(const MethodSpec& spec);
+
+ private:
+  std::map<std::string, std::unique_ptr<VulkanContext>> contexts_;  // by MethodSpec::illumination
+};
 
 // "cpu", "vulkan", or a comma-separated list of them (rtdr bench); throws rtdr::Error on anything else.
 std::vector<std::string> parse_backends(const std::string& text);

@@ -1,5 +1,6 @@
 // rtdr eval: every method on one scene against reference frames; metrics.csv, the three charts and a
 // side-by-side strip in --out. What is measured on which images: eval/experiment.h.
+#include "app/backend.h"
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
@@ -68,6 +69,8 @@ void run_eval_command(const EvalOptions& o) {
   config.ref_spp = o.ref_spp;
   config.seed = o.seed;
   config.cache_dir = o.cache;
+  SpecMethods methods;  // outlives every method run_eval makes
+  config.make_method = [&methods](const MethodSpec& spec) { return methods.make(spec); };
   make_output_dir(o.out);
 
   EvalResult result;
@@ -102,7 +105,9 @@ Command add_eval_command(CLI::App& app) {
   auto o = std::make_shared<EvalOptions>();
   CLI::App* sub = app.add_subcommand("eval", "run methods against reference frames: metrics.csv, charts, a strip");
   sub->add_option("--scene", o->scene, "shipped scene name or .gltf path")->capture_default_str();
-  sub->add_option("--methods", o->methods, "comma-separated method specs (name[:param=value...]) or all")
+  sub->add_option("--methods", o->methods,
+                  "comma-separated method specs (name[:param=value...]) or all; backend=vulkan runs svgf on the "
+                  "shader ports, illumination=fp16 with half records (eval/README.md)")
       ->capture_default_str();
   sub->add_flag("--sweep", o->sweep, "add the parameter sweeps: a-trous levels, alpha, the 3x3 kernel");
   sub->add_option("--frames", o->frames, "inclusive frame range A-B")->capture_default_str();

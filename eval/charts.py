@@ -2,7 +2,8 @@
 """The three charts of an evaluation, from the metrics.csv that `rtdr eval` writes.
 
   speed_vs_accuracy.png  mean ms per frame against mean RMSE (linear HDR), one point per method and
-                         parameter setting, the Pareto front (nothing both faster and more accurate) marked
+                         parameter setting (the shader ports', backend=vulkan, as green triangles), the Pareto
+                         front (nothing both faster and more accurate) marked
   error_over_frames.png  RMSE per frame for each method's default setting (in the style of A-SVGF Fig. 4)
   temporal_error.png     temporal error per frame: mean luminance of the difference of consecutive display
                          frames (SVGF Sec. 5.4, in the style of SVGF Fig. 10)
@@ -65,12 +66,15 @@ def speed_vs_accuracy(groups, out, title):
     points = [(mean([r["ms_total"] for r in g]), mean([r["rmse"] for r in g]), name) for name, g in groups.items()]
     fig, ax = plt.subplots(figsize=(8, 5.5))
     for ms, err, name in points:
-        ax.scatter(ms, err, color="tab:blue" if name.startswith("svgf") else "tab:orange", zorder=3)
+        if "backend=vulkan" in name:  # the shader ports: device time
+            ax.scatter(ms, err, color="tab:green", marker="^", zorder=3)
+        else:
+            ax.scatter(ms, err, color="tab:blue" if name.startswith("svgf") else "tab:orange", zorder=3)
         ax.annotate(name, (ms, err), textcoords="offset points", xytext=(5, 4), fontsize=7)
     front = pareto_front(points)
     ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front", zorder=2)
     ax.set_xscale("symlog", linthresh=1.0)
-    ax.set_xlabel("mean time per frame [ms] (CPU golden passes)")
+    ax.set_xlabel("mean time per frame [ms] (golden passes: wall time; backend=vulkan: device time)")
     ax.set_ylabel("mean RMSE against the reference (linear HDR)")
     ax.set_title("Speed versus accuracy" + title)
     ax.grid(True, alpha=0.3)

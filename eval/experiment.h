@@ -7,16 +7,24 @@
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
 //   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
-//   ms_total, ms_<pass>  wall time of the method's passes on this frame
+//   ms_total, ms_<pass>  time of the method's passes on this frame: wall time of the golden passes, device time
+//                     of the Vulkan ports; the ports' "transfer" (the host packing and unpacking planes) has its
+//                     own column and is not in ms_total, as in rtdr bench
 // A method is named by a spec "name[:param=value[:param=value...]]", e.g. "svgf:atrous_levels=3", where the
-// parameters are rows of filters/svgf/svgf_params.h; adding a method is a line in filters/method.cpp.
+// parameters are rows of filters/svgf/svgf_params.h; adding a method is a line in filters/method.cpp. Two more
+// keys choose where it runs: backend=cpu (the golden passes, the default) or backend=vulkan (the shader ports,
+// svgf only), and with backend=vulkan, illumination=fp32 or fp16 (the ports' illumination records,
+// gpu/vulkan_context.h; without it, $RTDR_VK_ILLUMINATION or the device's default).
 #pragma once
 
 #include "filters/image.h"
+#include "filters/method.h"
 #include "filters/svgf/svgf_params.h"
+#include "trace/render_frame.h"
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,10 +33,13 @@ namespace rtdr {
 struct MethodSpec {
   std::string text;    // as given, e.g. "svgf:alpha=0.1"
   std::string name;    // "svgf"
-  std::string params;  // "alpha=0.1" ("" for the defaults)
+  std::string params;  // "alpha=0.1" ("" for the defaults); backend and illumination included
   SvgfParams svgf;
+  std::string backend = "cpu";  // "cpu" or "vulkan"
+  std::string illumination;     // backend=vulkan: "fp32", "fp16", or "" for the context's default
 };
-// Throws rtdr::Error for an unknown method or parameter, or a value outside its range.
+// Throws rtdr::Error for an unknown method or parameter, a value outside its range, an unknown back end or
+// illumination records, or illumination without backend=vulkan.
 MethodSpec parse_method_spec(const std::string& text);
 // The parameter sweeps of the speed-versus-accuracy chart: a-trous levels 1 to 5, alpha in {0.05, 0.1,
 // 0.2, 0.5}, and the 3x3 kernel (the 5x5 is the default).
@@ -42,6 +53,9 @@ struct EvalConfig {
   int ref_spp = 256;
   uint32_t seed = 0;
   std::string cache_dir = "out/cache";  // "" disables the cache
+  // Makes a spec's method. Unset: the golden passes' make_method(spec.name, spec.svgf), and an error for any other
+  // back end; rtdr eval sets app/backend.h's SpecMethods, which also makes the Vulkan ports.
+  std::function<std::unique_ptr<Method>(const MethodSpec&)> make_method;
 };
 
 struct MetricsRow {
@@ -64,6 +78,13 @@ struct EvalResult {
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
+// What run_eval renders (or takes from the cache): 1-spp inputs of the config's seed, and references of ref_spp
+// samples of the same estimator with another seed.
+RenderSettings input_settings(const EvalConfig& config);
+RenderSettings reference_settings(const EvalConfig& config);
+
+// Every method is made before the first frame is rendered, so a spec that cannot run (no Vulkan device, say) fails
+// at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
 // method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, ms_total, then one ms_<pass> column per pass

@@ -1,0 +1,146 @@
+// `rtdr eval` (app/cmd_eval.cpp, app/backend.cpp's SpecMethods) as a user meets it, running the real binary
+// (RTDR_EXE): bad method specs give one line on stderr, a non-zero exit and nothing rendered or written; with
+// backend=vulkan in a spec, the shader ports run beside the golden passes and are measured by the same metrics.
+//
+// Bound on the ports' RMSE (the Vulkan test below). The pipeline's colour c' is within d of the golden colour c
+// per channel, relative to max(|c|, f) with f = 1e-2: d = 2e-3 with fp32 illumination records and 2e-2 with fp16
+// (derived in tests/gpu_svgf_test.cpp). So |c' - c| <= d (|c| + f) channel by channel, and taking root mean squares
+// (Minkowski) rms(c' - c) <= d (rms(c) + f). By the triangle inequality |rmse' - rmse| <= rms(c' - c), and
+// rms(c) <= rmse + rms(ref), rmse being the golden colour's distance to the reference ref. Hence
+//   |rmse' - rmse| <= d (rmse + rms(ref) + f),
+// with rms(ref) computed here from the reference frames rtdr eval left in its cache.
+#include "eval/experiment.h"
+#include "eval/frame_cache.h"
+#include "filters/image.h"
+#include "filters/svgf/modulate.h"
+#include "gpu/vulkan_context.h"
+#include "scenes/gltf_loader.h"
+
+#include "cli_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace rtdr::cli;
+
+fs::path scratch(const std::string& name) { return rtdr::cli::scratch("rtdr_eval_test", name); }
+
+// metrics.csv as rows of column name -> text.
+std::vector<std::map<std::string, std::string>> read_metrics(const fs::path& csv) {
+  std::istringstream in(read_text(csv));
+  auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
+    if (!line.empty() && line.back() == ',') out.push_back("");
+    return out;
+  };
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = cells(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> row = cells(line);
+    REQUIRE(row.size() == header.size());
+    std::map<std::string, std::string>& r = rows.emplace_back();
+    for (size_t i = 0; i < header.size(); ++i) r[header[i]] = row[i];
+  }
+  return rows;
+}
+
+// Root mean square over the pixels and channels of the colour a frame shows (eval's frame_colour).
+double rms_colour(const rtdr::Frame& f) {
+  const rtdr::RgbPlane c = rtdr::remodulate(rtdr::rgb_plane(f, "direct"), rtdr::rgb_plane(f, "indirect"),
+                                            rtdr::rgb_plane(f, "albedo"), rtdr::rgb_plane(f, "emission"));
+  double sum = 0.0;
+  for (const glm::vec3& p : c.data) sum += double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
+  return std::sqrt(sum / (3.0 * double(c.data.size())));
+}
+
+}  // namespace
+
+TEST_CASE("rtdr eval: a bad method spec gives one line before anything is rendered or written") {
+  const fs::path dir = scratch("bad");
+  const std::vector<std::string> bad_specs = {
+      "svgf:backend=metal",               // no such back end
+      "svgf:illumination=fp16",           // records without the ports
+      "svgf:backend=vulkan:illumination=fp8",
+      "svgf,eaw:backend=vulkan",          // no Vulkan port (or, without a device, no device)
+  };
+  for (const std::string& specs : bad_specs) {
+    INFO("--methods " << specs);
+    const RunResult r = run_rtdr("eval --scene pillars --methods " + specs + " --frames 0-1 --size 24x16 --ref-spp 2 " +
+                                     "--cache " + (dir / "cache").string() + " --out " + (dir / "out").string(),
+                                 dir);
+    CHECK(r.exit_code != 0);
+    CHECK_THAT(r.err, Catch::StartsWith("rtdr: error: "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(files_in(dir / "cache").empty());
+    CHECK(files_in(dir / "out").empty());
+  }
+}
+
+TEST_CASE("rtdr eval runs svgf on the shader ports beside the golden passes, within the pipeline's bound") {
+  std::string reason;
+  if (!rtdr::VulkanContext::available(&reason)) {
+    WARN("SKIPPED: no Vulkan device: " << reason);
+    return;
+  }
+  const fs::path dir = scratch("ports");
+  rtdr::EvalConfig config;  // what the command line below asks for, to find its reference frames in the cache
+  config.scene = "pillars";
+  config.first_frame = 0;
+  config.last_frame = 2;
+  config.width = 48;
+  config.height = 27;
+  config.ref_spp = 4;
+  const RunResult r = run_rtdr("eval --scene pillars --methods svgf,svgf:backend=vulkan:illumination=fp32,"
+                               "svgf:backend=vulkan:illumination=fp16 --frames 0-2 --size 48x27 --ref-spp 4 "
+                               "--cache " + (dir / "cache").string() + " --out " + (dir / "out").string(),
+                               dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto rows = read_metrics(dir / "out" / "metrics.csv");
+  REQUIRE(rows.size() == 9);  // 3 methods x 3 frames, method by method
+
+  const rtdr::Scene scene = rtdr::load_scene("pillars");
+  rtdr::FrameCache cache((dir / "cache").string(), scene);
+  const std::map<std::string, double> bound = {{"backend=vulkan:illumination=fp32", 2e-3},
+                                               {"backend=vulkan:illumination=fp16", 2e-2}};
+  for (int f = 0; f < 3; ++f) {
+    bool hit = false;
+    const double rms_ref = rms_colour(cache.get(f, 48, 27, rtdr::reference_settings(config), &hit));
+    REQUIRE(hit);  // the reference rtdr eval measured against
+    const auto& golden = rows[size_t(f)];
+    REQUIRE(golden.at("params").empty());
+    CHECK(golden.at("ms_transfer").empty());
+    for (size_t m = 1; m < 3; ++m) {
+      const auto& port = rows[m * 3 + size_t(f)];
+      INFO(port.at("params") << " frame " << f);
+      REQUIRE(std::stoi(port.at("frame")) == f);
+      // The ports report the host's transfer apart, and their device times sum to ms_total without it.
+      CHECK(std::stod(port.at("ms_transfer")) > 0.0);
+      double sum = 0.0;
+      for (const char* pass : {"ms_temporal", "ms_variance", "ms_atrous", "ms_modulate", "ms_tonemap", "ms_taa"})
+        sum += std::stod(port.at(pass));
+      CHECK(std::stod(port.at("ms_total")) == Approx(sum).epsilon(1e-6));
+      const double rmse = std::stod(golden.at("rmse")), rmse_port = std::stod(port.at("rmse"));
+      const double allowed = bound.at(port.at("params")) * (rmse + rms_ref + 1e-2);
+      INFO("rmse golden " << rmse << ", port " << rmse_port << ", allowed difference " << allowed);
+      CHECK(std::abs(rmse_port - rmse) <= allowed);
+    }
+    // The records the spec names are the ones used: halves round the colour, so the two ports' errors differ.
+    CHECK(rows[3 + size_t(f)].at("rmse") != rows[6 + size_t(f)].at("rmse"));
+  }
+}

@@ -1,0 +1,116 @@
+// Tests of eval/experiment.cpp's plumbing: method specs with their back end, the method factory, and which pass
+// times make up ms_total. What the metrics measure is tested in eval_metrics_test.cpp, and what they say about the
+// methods in eval_stability_test.cpp; the Vulkan ports under rtdr eval in app_eval_test.cpp.
+#include "eval/experiment.h"
+
+#include "core/error.h"
+
+#include "cli_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <memory>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The "none" method, with a made-up "transfer" time added to its pass times: what the Vulkan ports report beside
+// their device times.
+class WithTransfer : public rtdr::Method {
+ public:
+  static constexpr double kTransferMs = 1000.0;
+  std::string name() const override { return inner_->name(); }
+  rtdr::Frame filter(const rtdr::Frame& in, rtdr::Frame* dump) override {
+    rtdr::Frame out = inner_->filter(in, dump);
+    times_ = inner_->pass_times();
+    times_["transfer"] = kTransferMs;
+    return out;
+  }
+  void reset() override { inner_->reset(); }
+  rtdr::Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override {
+    return inner_->probe(pass, x, y, stream, level);
+  }
+  std::vector<std::string> probe_passes() const override { return inner_->probe_passes(); }
+
+ private:
+  std::unique_ptr<rtdr::Method> inner_ = rtdr::make_method("none");
+};
+
+rtdr::EvalConfig tiny_config(const std::vector<std::string>& specs) {
+  rtdr::EvalConfig c;
+  c.scene = "pillars";
+  for (const std::string& s : specs) c.methods.push_back(rtdr::parse_method_spec(s));
+  c.first_frame = 0;
+  c.last_frame = 1;
+  c.width = 24;
+  c.height = 16;
+  c.ref_spp = 2;
+  c.cache_dir = "";
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("method specs: parameters, back end and illumination records, each checked") {
+  const rtdr::MethodSpec plain = rtdr::parse_method_spec("svgf:atrous_levels=3");
+  CHECK(plain.name == "svgf");
+  CHECK(plain.params == "atrous_levels=3");
+  CHECK(plain.svgf.atrous_levels == 3);
+  CHECK(plain.backend == "cpu");
+  CHECK(plain.illumination.empty());
+
+  const rtdr::MethodSpec port = rtdr::parse_method_spec("svgf:backend=vulkan:illumination=fp16:kernel_size=3");
+  CHECK(port.backend == "vulkan");
+  CHECK(port.illumination == "fp16");
+  CHECK(port.svgf.kernel_size == 3);
+  CHECK(port.params == "backend=vulkan:illumination=fp16:kernel_size=3");  // the CSV tells the rows apart
+  CHECK(rtdr::parse_method_spec("svgf:backend=cpu").backend == "cpu");
+
+  for (const char* bad : {"svgf:backend=metal", "svgf:backend=", "svgf:backend", "svgf:illumination=fp16",
+                          "svgf:backend=cpu:illumination=fp32", "svgf:backend=vulkan:illumination=fp8",
+                          "svgf:sigma_q=1", "svgf:atrous_levels=11", "nothing:backend=vulkan"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(rtdr::parse_method_spec(bad), rtdr::Error);
+  }
+}
+
+TEST_CASE("run_eval makes every method before rendering, and without a factory runs the golden passes only") {
+  const fs::path cache = rtdr::cli::scratch("rtdr_eval_experiment_test", "cache");
+  rtdr::EvalConfig c = tiny_config({"svgf", "svgf:backend=vulkan"});
+  c.cache_dir = cache.string();
+  CHECK_THROWS_WITH(rtdr::run_eval(c), Catch::Contains("svgf:backend=vulkan") && Catch::Contains("cpu only"));
+  CHECK(fs::is_empty(cache));  // no frame was rendered first
+
+  // A factory that fails on the second spec fails just as early.
+  c.make_method = [](const rtdr::MethodSpec& spec) -> std::unique_ptr<rtdr::Method> {
+    if (spec.backend == "vulkan") throw rtdr::Error("no device");
+    return rtdr::make_method(spec.name, spec.svgf);
+  };
+  CHECK_THROWS_WITH(rtdr::run_eval(c), "no device");
+  CHECK(fs::is_empty(cache));
+}
+
+TEST_CASE("ms_total is the sum of the pass times without the host's transfer, which has its own column") {
+  rtdr::EvalConfig c = tiny_config({"none", "svgf"});
+  int made = 0;
+  c.make_method = [&made](const rtdr::MethodSpec& spec) -> std::unique_ptr<rtdr::Method> {
+    ++made;
+    if (spec.name == "none") return std::make_unique<WithTransfer>();
+    return rtdr::make_method(spec.name, spec.svgf);
+  };
+  const rtdr::EvalResult result = rtdr::run_eval(c);
+  CHECK(made == 2);
+  REQUIRE(result.rows.size() == 4);  // 2 methods x 2 frames
+  for (const rtdr::MetricsRow& row : result.rows) {
+    INFO(row.method << " frame " << row.frame);
+    double sum = 0.0;
+    for (const auto& [pass, ms] : row.ms)
+      if (pass != "transfer") sum += ms;
+    CHECK(row.ms.size() >= 2);
+    CHECK(row.ms_total == Approx(sum).epsilon(1e-12));
+    CHECK(row.ms.count("transfer") == (row.method == "none" ? 1u : 0u));
+    if (row.method == "none") CHECK(row.ms.at("transfer") == WithTransfer::kTransferMs);
+  }
+}

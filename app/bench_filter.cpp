@@ -2,7 +2,8 @@
 // at --size, per pass, on each back end of --backend (cpu, vulkan, or cpu,vulkan in one run): the median over
 // --runs frames of a sequence, after at least 5 frames (or --warmup) that build the history, so the variance
 // estimate is the temporal one of the steady state (SVGF17 Sec. 4.2 switches from the 7x7 spatial estimate after
-// 4 frames). CPU pass times are wall times; Vulkan pass times are device timestamps, and "transfer" is the host's
+// 4 frames). The method's parameters are rtdr filter's (--atrous_levels 4, --kernel_size 3, ...), and reports name
+// it as a spec of rtdr eval ("svgf:kernel_size=3"). CPU pass times are wall times; Vulkan pass times are device timestamps, and "transfer" is the host's
 // packing of the inputs and unpacking of the outputs (not part of "total"). With two back ends, each pass's
 // speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and indirect, at 1280x720 on 2 cores in at most
 // 2 s (cpu); the Vulkan ports at least 5x faster than the cpu passes on lavapipe (issue 6).
@@ -62,6 +63,9 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
 
 void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
   const std::vector<std::string> backends = parse_backends(o.backend);
+  // The method as a spec of rtdr eval: its name and the parameters that differ from their defaults.
+  const std::string changed = changed_params(o.params);
+  const std::string spec = o.method + (changed.empty() ? "" : ":" + changed);
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
     // A short sequence, rendered once (1 spp); each back end then filters it frame after frame.
@@ -72,14 +76,14 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     std::vector<std::pair<std::string, double>> commands;           // the Vulkan frame's commands, in order
     std::string devices;
     for (const std::string& backend : backends) {
-      const BackendMethod m = make_backend_method(backend, o.method, SvgfParams{});
+      const BackendMethod m = make_backend_method(backend, o.method, o.params);
       if (m.context)
         devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
                    shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs, " +
                    illumination_records_name(m.context->illumination_records()) + " illumination records)";
       medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands);
     }
-    std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", o.method.c_str(), name.c_str(),
+    std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", spec.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), devices.c_str(), o.runs);
     std::printf("  %-10s", "pass");
     for (const std::string& backend : backends) std::printf(" %10s", backend.c_str());
@@ -99,14 +103,14 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
         }
         std::printf(" %10.3f", it->second);
         if (csv)
-          *csv << "filter:" << o.method << ':' << backend << ',' << name << ',' << size.width << ',' << size.height
+          *csv << "filter:" << spec << ':' << backend << ',' << name << ',' << size.width << ',' << size.height
                << ',' << thread_count() << ",ms_" << pass << ',' << it->second << '\n';
       }
       if (compare && medians["cpu"].count(pass) && medians["vulkan"].count(pass) && medians["vulkan"][pass] > 0.0) {
         const double speedup = medians["cpu"][pass] / medians["vulkan"][pass];
         std::printf(" %9.1fx", speedup);
         if (csv)
-          *csv << "filter:" << o.method << ":cpu/vulkan," << name << ',' << size.width << ',' << size.height << ','
+          *csv << "filter:" << spec << ":cpu/vulkan," << name << ',' << size.width << ',' << size.height << ','
                << thread_count() << ",speedup_" << pass << ',' << speedup << '\n';
       }
       std::printf("\n");

@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "gpu/vulkan_context.h"
 
 #include "cli_fixtures.h"
 
@@ -117,4 +118,30 @@ TEST_CASE("option parsers accept what they document and reject the rest") {
   CHECK(rtdr::parse_frames("2-9").last == 9);
   for (const char* bad : {"", "-", "3-", "-3", "9-2", "a", "1-2-3"})
     CHECK_THROWS_AS(rtdr::parse_frames(bad), rtdr::Error);
+}
+
+TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, on each back end") {
+  const fs::path dir = scratch("bench");
+  std::string backends = "cpu";
+  if (rtdr::VulkanContext::available()) backends += ",vulkan";
+  const fs::path csv = dir / "bench.csv";
+  const RunResult r = run_rtdr("bench --backend " + backends + " --size 32x18 --runs 1 --warmup 1 --atrous_levels 2 " +
+                                   "--kernel_size 3 --csv " + csv.string(),
+                               dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("svgf:atrous_levels=2:kernel_size=3 on pillars at 32x18"));
+  const std::string text = read_file(csv);
+  for (const std::string backend : {"cpu", "vulkan"}) {
+    if (backends.find(backend) == std::string::npos) continue;
+    CHECK_THAT(text, Catch::Contains("filter:svgf:atrous_levels=2:kernel_size=3:" + backend + ",pillars,32,18,"));
+  }
+  if (backends != "cpu") {  // the ports ran two a-trous levels, each its own command
+    const std::regex levels("command by command.* atrous [0-9.]+ atrous [0-9.]+ modulate ");
+    CHECK(std::regex_search(r.out, levels));
+  }
+  // A parameter out of its range is one line, before anything runs.
+  const RunResult bad = run_rtdr("bench --backend cpu --size 32x18 --runs 1 --kernel_size 4", dir);
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.err == "rtdr: error: svgf parameter kernel_size must be 3 or 5\n");
 }

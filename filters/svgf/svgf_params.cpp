@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 
+#include <charconv>
+
 namespace rtdr {
 
 std::vector<ParamInfo> svgf_param_table() { return {RTDR_SVGF_PARAMS(RTDR_PARAM_ROW)}; }
@@ -11,6 +13,19 @@ std::string describe(const SvgfParams& params) { return describe_params(svgf_par
 bool set_param(SvgfParams& params, const std::string& key, double value) {
   RTDR_SVGF_PARAMS(RTDR_PARAM_SET)
   return false;
+}
+
+std::string changed_params(const SvgfParams& params) {
+  const std::vector<ParamInfo> table = svgf_param_table();
+  const std::vector<double> values = param_values(params);
+  std::string text;
+  for (size_t i = 0; i < table.size(); ++i) {
+    if (values[i] == table[i].default_value) continue;
+    char digits[32];  // every parameter is a float or a small int: the shortest digits that read back exactly
+    const auto end = std::to_chars(digits, digits + sizeof digits, float(values[i])).ptr;
+    text += (text.empty() ? "" : ":") + table[i].name + "=" + std::string(digits, end);
+  }
+  return text;
 }
 
 void validate(const SvgfParams& params) {

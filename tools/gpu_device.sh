@@ -2,22 +2,30 @@
 # Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
 # no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
 # take .gl/ and .deps/ along. Usage, from the repository root:
-#   bash tools/gpu_device.sh [info] [test] [compare] [bench]   (default: all four; none of them: build only)
+#   bash tools/gpu_device.sh [info] [test] [compare] [bench] [options]   (default: all five; none: build only)
 #     info     the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
 #     test     a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
 #     compare  rtdr compare on 10 frames of pillars at 320x180, every buffer of the ports against the golden
 #              passes, with the GPU's default fp16 illumination records and with fp32 records
-#     bench  rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
-#            inputs, fp16 illumination records), then the ports alone with fp32 records
-#            (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
-#            10 times back to back and the last timed, so that the GPU runs at its working clock (--submits)
-# Logs and bench.csv go to $OUT (default out/device).
+#     bench    rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
+#              inputs, fp16 illumination records), then the ports alone with fp32 records
+#              (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
+#              10 times back to back and the last timed, so that the GPU runs at its working clock (--submits)
+#     options  the ports alone at 1920x1080 in the cheaper configurations whose accuracy docs/performance.md
+#              measures ("What 0.5 ms would cost"): 4 and 3 a-trous levels, the 3x3 kernel, the 3x3 kernel with 4
+#              levels
+# The logs, CSVs and the SM clock go to $LOGS (default /tmp/rtdr_device), packed after every step into
+# $OUT/device.tgz (default out/device): the device tool brings back 8 files at most, and whatever a step had
+# written when a time limit struck. Each step's summary is printed too.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT=${OUT:-out/device}
-mkdir -p "$OUT"
+LOGS=${LOGS:-/tmp/rtdr_device}
+mkdir -p "$OUT" "$LOGS"
+# Everything in $LOGS, as one archive in $OUT, replaced atomically.
+pack() { tar czf "$OUT/device.tgz.part" -C "$LOGS" . && mv "$OUT/device.tgz.part" "$OUT/device.tgz"; }
 steps=("$@")
-((${#steps[@]})) || steps=(info test compare bench)
+((${#steps[@]})) || steps=(info test compare bench options)
 [ "${steps[*]}" = build ] && steps=()
 wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
 
@@ -43,8 +51,8 @@ declare -p VK_DRIVER_FILES VK_ICD_FILENAMES >>"$DEPS/env.sh" 2>/dev/null
 
 if wants info; then
   nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv 2>&1 |
-    tee "$OUT/info.txt"
-  python3 - <<'EOF' 2>&1 | tee -a "$OUT/info.txt"
+    tee "$LOGS/info.txt"
+  python3 - <<'EOF' 2>&1 | tee -a "$LOGS/info.txt"
 # A device-to-device copy of 1 GiB: the memory bandwidth the passes' bytes are set against.
 try:
     import torch
@@ -62,46 +70,64 @@ for _ in range(20):
 ms = sorted(times)[len(times) // 2]
 print(f"device-to-device copy of 1 GiB: {ms:.3f} ms median, {2 * a.numel() * 4 / (ms * 1e-3) / 1e9:.0f} GB/s read + written")
 EOF
+  pack
 fi
 
 BUILD=build-gpu
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$DEPS/usr" \
-  -DRTDR_VULKAN_TESTS_ONLY=ON >"$OUT/build.log" 2>&1 &&
-  cmake --build "$BUILD" -j "$(nproc)" >>"$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
+  -DRTDR_VULKAN_TESTS_ONLY=ON >"$LOGS/build.log" 2>&1 &&
+  cmake --build "$BUILD" -j "$(nproc)" >>"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
 echo "built: $BUILD"
 
 status=0
 if wants test; then
-  ctest --test-dir "$BUILD" -L vulkan --output-on-failure -j 4 >"$OUT/ctest.log" 2>&1 || status=1
-  grep -E "tests passed|tests failed|Failed|\*\*\*" "$OUT/ctest.log" | head -30
+  ctest --test-dir "$BUILD" -L vulkan --output-on-failure -j 4 >"$LOGS/ctest.log" 2>&1 || status=1
+  grep -E "tests passed|tests failed|Failed|\*\*\*" "$LOGS/ctest.log" | head -30
+  pack
 fi
 
 if wants compare; then
-  # The rendered frames stay outside $OUT, which comes back from the machine.
+  # The rendered frames stay outside $LOGS, which comes back from the machine packed.
   frames=/tmp/rtdr_compare_in
   "$BUILD/app/rtdr" render --scene pillars --frames 0-9 --size 320x180 --out "$frames" >/dev/null || status=1
   for records in fp16 fp32; do
-    RTDR_VK_ILLUMINATION=$records "$BUILD/app/rtdr" compare --in "$frames" --csv "$OUT/compare_$records.csv" \
-      >"$OUT/compare_$records.txt" 2>&1 || status=1
-    grep -E "^(svgf|color|display)" "$OUT/compare_$records.txt"
+    RTDR_VK_ILLUMINATION=$records "$BUILD/app/rtdr" compare --in "$frames" --csv "$LOGS/compare_$records.csv" \
+      >"$LOGS/compare_$records.txt" 2>&1 || status=1
+    grep -E "^(svgf|color|display)" "$LOGS/compare_$records.txt"
   done
+  pack
+fi
+
+clocks=
+if wants bench || wants options; then
+  # The SM clock while the benchmarks run (the card as found: its settings are never changed).
+  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
+    >"$LOGS/clocks.csv" 2>&1 &
+  clocks=$!
 fi
 
 if wants bench; then
-  # The SM clock while the benchmarks run (the card as found: its settings are never changed).
-  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
-    >"$OUT/clocks.csv" 2>&1 &
-  clocks=$!
   for size in 1280x720 1920x1080; do
     # The ports as a GPU runs them against the golden passes, then the fp32 records, then the texel-buffer build.
     "$BUILD/app/rtdr" bench --backend cpu,vulkan --scenes pillars --size "$size" --runs 20 --warmup 5 \
-      --submits 10 --csv "$OUT/bench_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+      --submits 10 --csv "$LOGS/bench_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
     for variant in RTDR_VK_ILLUMINATION=fp32 RTDR_VK_INPUTS=texel; do
-      echo "$variant:" | tee -a "$OUT/bench.txt"
+      echo "$variant:" | tee -a "$LOGS/bench.txt"
       env "$variant" "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
-        --warmup 5 --submits 10 --csv "$OUT/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$OUT/bench.txt" || status=1
+        --warmup 5 --submits 10 --csv "$LOGS/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
     done
   done
-  kill "$clocks"
+  pack
 fi
+
+if wants options; then
+  # The configurations a 0.5 ms target could take (docs/performance.md), each timed like the bench step.
+  for params in "--atrous_levels 4" "--atrous_levels 3" "--kernel_size 3" "--kernel_size 3 --atrous_levels 4"; do
+    # shellcheck disable=SC2086  # $params is two or four words on purpose
+    "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size 1920x1080 --runs 20 --warmup 5 --submits 10 \
+      $params --csv "$LOGS/options_${params//[ -]/}.csv" 2>&1 | tee -a "$LOGS/options.txt" || status=1
+  done
+  pack
+fi
+[ -n "$clocks" ] && kill "$clocks" && pack
 exit $status

@@ -3,10 +3,11 @@
 // --runs frames of a sequence, after at least 5 frames (or --warmup) that build the history, so the variance
 // estimate is the temporal one of the steady state (SVGF17 Sec. 4.2 switches from the 7x7 spatial estimate after
 // 4 frames). The method's parameters are rtdr filter's (--atrous_levels 4, --kernel_size 3, ...), and reports name
-// it as a spec of rtdr eval ("svgf:kernel_size=3"). CPU pass times are wall times; Vulkan pass times are device timestamps, and "transfer" is the host's
-// packing of the inputs and unpacking of the outputs (not part of "total"). With two back ends, each pass's
-// speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and indirect, at 1280x720 on 2 cores in at most
-// 2 s (cpu); the Vulkan ports at least 5x faster than the cpu passes on lavapipe (issue 6).
+// it as a spec of rtdr eval ("svgf:kernel_size=3"). CPU pass times are wall times; Vulkan pass times are device
+// timestamps, and "transfer" is the host's packing of the inputs and unpacking of the outputs (not part of
+// "total"). With two back ends, each pass's speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and
+// indirect, at 1280x720 on 2 cores in at most 2 s (cpu); the Vulkan ports at least 5x faster than the cpu passes on
+// lavapipe (issue 6).
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"

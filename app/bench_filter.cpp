@@ -24,7 +24,7 @@ namespace rtdr {
 
 namespace {
 
-// Median ms per pass (and "total", the passes' sum without "transfer") of `method` over frames[warmup..]. For the
+// Median ms per pass (and "total", total_ms: the passes' sum without "transfer") of `method` over frames[warmup..]. For the
 // Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands (left alone for other
 // methods); each frame's batch is submitted `submits` times and the last one timed (--submits).
 std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup, int submits,
@@ -44,12 +44,8 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
         command_times[c].second.push_back(last[c].second);
       }
     }
-    double total = 0.0;
-    for (const auto& [pass, ms] : method.pass_times()) {
-      times[pass].push_back(ms);
-      if (pass != "transfer") total += ms;
-    }
-    times["total"].push_back(total);
+    for (const auto& [pass, ms] : method.pass_times()) times[pass].push_back(ms);
+    times["total"].push_back(total_ms(method.pass_times()));
   }
   std::map<std::string, double> medians;
   for (const auto& [pass, ms] : times) medians[pass] = median(ms);

@@ -26,12 +26,6 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return parts;
 }
 
-// The colour a rendered frame shows: its demodulated illumination remodulated, emission + albedo (direct +
-// indirect), exactly as the methods remodulate theirs [SVGF17 Sec. 3].
-RgbPlane frame_colour(const Frame& f) {
-  return remodulate(rgb_plane(f, "direct"), rgb_plane(f, "indirect"), rgb_plane(f, "albedo"), rgb_plane(f, "emission"));
-}
-
 // The method a spec names, on its back end.
 std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& spec) {
   if (c.make_method) return c.make_method(spec);
@@ -57,10 +51,8 @@ void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<F
     row.flip = flip(display, ref_display[k]).mean;
     row.brightness_error = brightness_error(colour, ref_colour[k]);
     row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
-    for (const auto& [pass, ms] : method.pass_times()) {
-      row.ms[pass] = ms;
-      if (pass != "transfer") row.ms_total += ms;  // the host's packing, kept out of the total as by rtdr bench
-    }
+    row.ms = method.pass_times();
+    row.ms_total = total_ms(row.ms);  // without the host's transfer, as rtdr bench
     result.rows.push_back(row);
     previous_display = display;
     if (k + 1 == inputs.size() && spec.params.empty()) result.last_frame.push_back({spec.text, display});
@@ -108,6 +100,11 @@ std::vector<std::string> standard_sweep() {
   for (const char* alpha : {"0.05", "0.1", "0.5"}) specs.push_back(std::string("svgf:alpha=") + alpha + ":alpha_moments=" + alpha);
   specs.push_back("svgf:kernel_size=3");
   return specs;  // plus "svgf" itself: 5 levels, alpha 0.2, the 5x5 kernel
+}
+
+// [SVGF17 Sec. 3]: remodulated exactly as the methods remodulate their filtered illumination.
+RgbPlane frame_colour(const Frame& f) {
+  return remodulate(rgb_plane(f, "direct"), rgb_plane(f, "indirect"), rgb_plane(f, "albedo"), rgb_plane(f, "emission"));
 }
 
 RenderSettings input_settings(const EvalConfig& c) {

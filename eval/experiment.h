@@ -78,6 +78,10 @@ struct EvalResult {
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
+// The colour a rendered frame shows, what the methods are measured against: its demodulated illumination
+// remodulated, emission + albedo (direct + indirect).
+RgbPlane frame_colour(const Frame& frame);
+
 // What run_eval renders (or takes from the cache): 1-spp inputs of the config's seed, and references of ref_spp
 // samples of the same estimator with another seed.
 RenderSettings input_settings(const EvalConfig& config);

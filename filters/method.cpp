@@ -37,6 +37,13 @@ const std::vector<MethodEntry>& registry() {
 
 }  // namespace
 
+double total_ms(const PassTimes& times) {
+  double total = 0.0;
+  for (const auto& [pass, ms] : times)
+    if (pass != kTransferPass) total += ms;
+  return total;
+}
+
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
   for (const MethodEntry& m : registry()) names.push_back(m.name);

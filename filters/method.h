@@ -21,6 +21,11 @@ namespace rtdr {
 
 // Wall time of each pass of the last frame, milliseconds, by pass name ("temporal", "atrous", ...).
 using PassTimes = std::map<std::string, double>;
+// The pass name under which a back end reports work that is not filtering: the Vulkan ports' host packing and
+// unpacking of planes, and their copies to the host (gpu/svgf_vulkan.h).
+inline constexpr const char* kTransferPass = "transfer";
+// A frame's total, as rtdr bench and rtdr eval report it: the sum of its pass times without kTransferPass.
+double total_ms(const PassTimes& times);
 
 class Method {
  public:

@@ -221,8 +221,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                        .has_history = has_history ? 1u : 0u,
                        .padding = 0});
   // The results into readback memory: on a GPU the host reads device memory across the bus, uncached.
-  batch_.copy(*b.colour, *b.colour_readback, "transfer");
-  batch_.copy(*b.display[cur], *b.display_readback, "transfer");
+  batch_.copy(*b.colour, *b.colour_readback, kTransferPass);
+  batch_.copy(*b.display[cur], *b.display_readback, kTransferPass);
   batch_.run(submits_);
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
@@ -235,7 +235,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   set_rgb_plane(out, "display", unpack_rgb(*b.display_readback, w, h));
   const auto t3 = std::chrono::steady_clock::now();
   // "transfer": the copies' device time and the host's packing and unpacking.
-  times_["transfer"] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
+  times_[kTransferPass] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
   if (d) d->unpack(*dump);
   return out;
 }

@@ -11,8 +11,6 @@
 // with rms(ref) computed here from the reference frames rtdr eval left in its cache.
 #include "eval/experiment.h"
 #include "eval/frame_cache.h"
-#include "filters/image.h"
-#include "filters/svgf/modulate.h"
 #include "gpu/vulkan_context.h"
 #include "scenes/gltf_loader.h"
 
@@ -59,10 +57,9 @@ std::vector<std::map<std::string, std::string>> read_metrics(const fs::path& csv
   return rows;
 }
 
-// Root mean square over the pixels and channels of the colour a frame shows (eval's frame_colour).
+// Root mean square over the pixels and channels of the colour a frame shows.
 double rms_colour(const rtdr::Frame& f) {
-  const rtdr::RgbPlane c = rtdr::remodulate(rtdr::rgb_plane(f, "direct"), rtdr::rgb_plane(f, "indirect"),
-                                            rtdr::rgb_plane(f, "albedo"), rtdr::rgb_plane(f, "emission"));
+  const rtdr::RgbPlane c = rtdr::frame_colour(f);
   double sum = 0.0;
   for (const glm::vec3& p : c.data) sum += double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
   return std::sqrt(sum / (3.0 * double(c.data.size())));

@@ -25,7 +25,7 @@ class WithTransfer : public rtdr::Method {
   rtdr::Frame filter(const rtdr::Frame& in, rtdr::Frame* dump) override {
     rtdr::Frame out = inner_->filter(in, dump);
     times_ = inner_->pass_times();
-    times_["transfer"] = kTransferMs;
+    times_[rtdr::kTransferPass] = kTransferMs;
     return out;
   }
   void reset() override { inner_->reset(); }

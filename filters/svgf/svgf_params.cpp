@@ -1,3 +1,5 @@
+// The expansions of SVGF's parameter table (svgf_params.h): every row cites where its default comes from, e.g.
+// alpha = 0.2 [SVGF17 Sec. 4.1] and sigma_z, sigma_n, sigma_l = 1, 128, 4 [SVGF17 Sec. 4.4, Eq. 3-5].
 #include "filters/svgf/svgf_params.h"
 
 #include "core/error.h"

@@ -24,6 +24,8 @@ struct MethodEntry {
   std::function<SvgfOptions()> options;
 };
 
+// svgf runs every stage of [SVGF17 Sec. 3]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
+// is Dammertz 2010's edge-avoiding a-trous without temporal reuse, a baseline of [SVGF17 Sec. 5.1].
 const std::vector<MethodEntry>& registry() {
   static const std::vector<MethodEntry> methods = {
       {"svgf", [] { return stages("svgf", true, SpatialFilter::Atrous); }},

@@ -47,7 +47,8 @@ class Method {
   PassTimes times_;
 };
 
-// "svgf", "accum" (temporal accumulation only), "eaw" (Dammertz 2010, no temporal reuse), "eaw-accum"
+// "svgf" (the pipeline of [SVGF17 Sec. 3]), "accum" (its temporal accumulation only, [SVGF17 Sec. 4.1]), "eaw"
+// (Dammertz 2010, no temporal reuse), "eaw-accum"
 // (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated). Throws rtdr::Error for an
 // unknown name, listing the known ones.
 // `params` are SVGF's tunables (svgf_params.h); methods that do not use one ignore it.

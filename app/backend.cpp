@@ -28,9 +28,9 @@ std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
   const SvgfOptions options = method_options(spec.name, spec.svgf);  // checks the method's name first
   std::unique_ptr<VulkanContext>& context = contexts_[spec.illumination];
   if (!context) {
-    VulkanOptions vulkan;
-    if (spec.illumination == "fp32") vulkan.illumination = IlluminationRecords::Fp32;
-    if (spec.illumination == "fp16") vulkan.illumination = IlluminationRecords::Fp16;
+    VulkanOptions vulkan;  // "" leaves the records Auto
+    for (const IlluminationRecords records : {IlluminationRecords::Fp32, IlluminationRecords::Fp16})
+      if (spec.illumination == illumination_records_name(records)) vulkan.illumination = records;
     context = std::make_unique<VulkanContext>(vulkan);
   }
   return std::make_unique<SvgfVulkan>(*context, options);

@@ -37,19 +37,12 @@ fs::path scratch(const std::string& name) { return rtdr::cli::scratch("rtdr_eval
 // metrics.csv as rows of column name -> text.
 std::vector<std::map<std::string, std::string>> read_metrics(const fs::path& csv) {
   std::istringstream in(read_text(csv));
-  auto cells = [](const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
-    if (!line.empty() && line.back() == ',') out.push_back("");
-    return out;
-  };
   std::string line;
   std::getline(in, line);
-  const std::vector<std::string> header = cells(line);
+  const std::vector<std::string> header = csv_cells(line);
   std::vector<std::map<std::string, std::string>> rows;
   while (std::getline(in, line)) {
-    const std::vector<std::string> row = cells(line);
+    const std::vector<std::string> row = csv_cells(line);
     REQUIRE(row.size() == header.size());
     std::map<std::string, std::string>& r = rows.emplace_back();
     for (size_t i = 0; i < header.size(); ++i) r[header[i]] = row[i];

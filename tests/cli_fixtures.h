@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace rtdr::cli {
 
@@ -42,6 +43,16 @@ inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const st
                           out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+}
+
+// The cells of one line of a CSV file the command wrote (no quoting: its cells hold no commas); an empty last
+// cell, after a trailing comma, counts.
+inline std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.push_back("");
+  return cells;
 }
 
 // The names of the files in `dir` (none when it does not exist).

@@ -304,9 +304,7 @@ std::map<std::pair<int, std::string>, std::vector<std::string>> read_compare_csv
   REQUIRE(line == "frame,channel,max_abs,abs_x,abs_y,abs_cpu,abs_vulkan,max_rel,rel_x,rel_y,rel_cpu,rel_vulkan");
   std::map<std::pair<int, std::string>, std::vector<std::string>> rows;
   while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    const std::vector<std::string> cells = rtdr::cli::csv_cells(line);
     REQUIRE(cells.size() == 12);
     rows[{std::stoi(cells[0]), cells[1]}] = cells;
   }

@@ -4,14 +4,14 @@
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "core/subprocess.h"
 #include "eval/experiment.h"
 #include "filters/method.h"
 
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <sstream>
 
@@ -71,7 +71,7 @@ void run_eval_command(const EvalOptions& o) {
   config.cache_dir = o.cache;
   SpecMethods methods;  // outlives every method run_eval makes
   config.make_method = [&methods](const MethodSpec& spec) { return methods.make(spec); };
-  make_output_dir(o.out);
+  StagedOutputDir out(o.out);  // every output appears at the end, or none does
 
   EvalResult result;
   {
@@ -83,15 +83,17 @@ void run_eval_command(const EvalOptions& o) {
       static_cast<void>(done);
     });
   }
-  const std::string csv = (std::filesystem::path(o.out) / "metrics.csv").string();
-  write_metrics_csv(csv, result.rows);
-  write_strip((std::filesystem::path(o.out) / "strip.png").string(), result.last_frame);
-  const std::string charts = "/usr/bin/python3 '" RTDR_SOURCE_DIR "/eval/charts.py' '" + csv + "' '" + o.out +
-                             "' --title '" + o.scene + "'";
-  if (std::system(charts.c_str()) != 0)
-    throw Error("the charts failed: " + charts + " (needs Debian's python3-matplotlib; run tools/setup.sh)");
-  std::printf("wrote %s, speed_vs_accuracy.png, error_over_frames.png, temporal_error.png and strip.png in %s\n",
-              csv.c_str(), o.out.c_str());
+  write_metrics_csv(out.file("metrics.csv"), result.rows);
+  write_strip(out.file("strip.png"), result.last_frame);
+  // The chart script gets its arguments as a vector, never through a shell: a path or scene name holding a
+  // quote is just a name. "--" ends the options, so a name that starts with '-' is not taken for one.
+  const ProgramResult charts = run_program({"/usr/bin/python3", RTDR_SOURCE_DIR "/eval/charts.py",
+                                            "--title=" + o.scene, "--", out.file("metrics.csv"), out.staging()});
+  if (charts.exit_code != 0)
+    throw Error("the charts failed: " + last_line(charts.error_output));
+  out.commit();
+  std::printf("wrote metrics.csv, speed_vs_accuracy.png, error_over_frames.png, temporal_error.png and strip.png "
+              "in %s\n", o.out.c_str());
   std::printf("metrics.csv: rmse, relmse, brightness_error on linear HDR radiance; ssim, flip, temporal_error on "
               "tone-mapped display values (eval/README.md)\n");
   std::printf("strip.png, left to right:");

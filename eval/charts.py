@@ -10,16 +10,22 @@
 
 Usage: /usr/bin/python3 eval/charts.py out/eval/metrics.csv out/eval [--title TEXT]
 Needs Debian's numpy and matplotlib (python3-numpy, python3-matplotlib), installed by tools/setup.sh.
+Each chart is written under a temporary name and renamed, so a failure (a full disk, say) leaves no partial
+PNG; it prints one line, "charts.py: error: ...", and exits with status 1.
 """
 import argparse
 import csv
 import math
 import os
+import sys
 
-import matplotlib
+try:
+    import matplotlib
 
-matplotlib.use("Agg")  # no display: write files only
-import matplotlib.pyplot as plt  # noqa: E402
+    matplotlib.use("Agg")  # no display: write files only
+    import matplotlib.pyplot as plt
+except ImportError as e:  # one line, as below
+    sys.exit("charts.py: error: %s (needs Debian's python3-matplotlib: run tools/setup.sh)" % e)
 
 
 def read_rows(path):
@@ -62,6 +68,18 @@ def pareto_front(points):
     return front
 
 
+def save(fig, path):
+    """Writes the figure to a temporary name beside `path`, then renames it: a reader never sees a partial PNG."""
+    tmp = "%s.tmp-%d" % (path, os.getpid())
+    try:
+        fig.savefig(tmp, dpi=110, format="png")
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def speed_vs_accuracy(groups, out, title):
     points = [(mean([r["ms_total"] for r in g]), mean([r["rmse"] for r in g]), name) for name, g in groups.items()]
     fig, ax = plt.subplots(figsize=(8, 5.5))
@@ -80,8 +98,7 @@ def speed_vs_accuracy(groups, out, title):
     ax.grid(True, alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "speed_vs_accuracy.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "speed_vs_accuracy.png"))
 
 
 def over_frames(groups, key, ylabel, name, out, title):
@@ -97,8 +114,7 @@ def over_frames(groups, key, ylabel, name, out, title):
     ax.grid(True, alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(out, name), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, name))
 
 
 def main():
@@ -115,4 +131,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except Exception as e:  # one line for rtdr eval to quote, not a traceback
+        sys.exit("charts.py: error: %s: %s" % (type(e).__name__, e))

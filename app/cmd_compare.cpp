@@ -65,7 +65,7 @@ void run_compare(const CompareOptions& o) {
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
   // Every input is read and checked before anything runs, so bad input leaves no CSV.
   SequenceShape shape;
-  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape);
+  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape, golden.method->inputs());
 
   const VulkanContext& device = *port.context;
   std::printf("%s on %zu frame(s) of %s: cpu (golden) against vulkan (%s, %s inputs, %s illumination records)\n",

@@ -30,24 +30,30 @@ void run_filter(const FilterOptions& o) {
   const BackendMethod backend = make_backend_method(o.backend, o.method, o.params);
   Method* method = backend.method.get();
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
-  make_output_dir(o.out);
+  std::error_code ec;
+  if (std::filesystem::equivalent(o.in, o.out, ec))
+    throw Error("--out '" + o.out + "' is --in: the filtered frames would overwrite their inputs");
 
-  // Every input is read and checked before anything is written, so bad input leaves no output at all.
+  // Every input is read and checked before anything is written: every channel the method reads, in every frame.
   SequenceShape shape;
-  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape);
+  for (const SequenceFrame& f : frames) read_filter_input(f.path, shape, method->inputs());
+  // And every output goes into a staging folder until the last frame is done: a failed run leaves no output.
+  StagedOutputDir out(o.out);
 
   std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
               o.method == "none" ? "" : describe(o.params).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
-    const Frame out = o.dump ? filter_with_dump(*method, in) : method->filter(in);
-    write_exr(frame_path(o.out, f.index, "exr"), out);
-    write_display_png(frame_path(o.out, f.index, "png"), rgb_plane(out, "display"));
+    const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
+    require_finite_output(filtered, "frame " + std::to_string(f.index) + " of --in '" + o.in + "'", pass_writing);
+    write_exr(out.file(frame_name(f.index, "exr")), filtered);
+    write_display_png(out.file(frame_name(f.index, "png")), rgb_plane(filtered, "display"));
     double total = 0.0;
     for (const auto& [pass, ms] : method->pass_times()) total += ms;
     std::printf("frame %d  %.1f ms  -> %s\n", f.index, total, frame_path(o.out, f.index, "exr").c_str());
   }
+  out.commit();
 }
 
 struct ProbeOptions {
@@ -63,10 +69,7 @@ struct ProbeOptions {
 };
 
 void run_probe(const ProbeOptions& o) {
-  const size_t comma = o.pixel.find(',');
-  int x = -1, y = -1;
-  if (comma == std::string::npos || std::sscanf(o.pixel.c_str(), "%d,%d", &x, &y) != 2)
-    throw Error("--pixel '" + o.pixel + "' is not X,Y");
+  const auto [x, y] = parse_pixel(o.pixel, "--pixel");
   const std::unique_ptr<Method> method = make_method(o.method, o.params);
   // The history of frame F is built by every frame before it: run the method from the first frame on.
   const std::vector<SequenceFrame> all = list_sequence(o.in, "");
@@ -74,7 +77,7 @@ void run_probe(const ProbeOptions& o) {
   bool found = false;
   for (const SequenceFrame& f : all) {
     if (f.index > o.frame) break;
-    method->filter(read_filter_input(f.path, shape), nullptr);
+    method->filter(read_filter_input(f.path, shape, method->inputs()), nullptr);
     found = f.index == o.frame;
   }
   if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");

@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/parallel.h"
@@ -31,11 +32,11 @@ void run_render(const RenderOptions& o) {
   const Size size = parse_size(o.size);
   const FrameRange frames = parse_frames(o.frames);
   const Scene scene = load_scene(o.scene);
-  make_output_dir(o.out);
+  StagedOutputDir out(o.out);  // the frames appear when the last one is done; a failed run leaves none
 
   const auto start = std::chrono::steady_clock::now();
   TraceStats total;
-  for (int f = frames.first; f <= frames.last; ++f) {
+  for (int f = frames.first; f <= frames.last; ++f) {  // no overflow: last <= kMaxFrameIndex
     TraceStats stats;
     Frame frame;
     if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
@@ -44,13 +45,16 @@ void run_render(const RenderOptions& o) {
     } else {
       frame = render_frame(scene, f, size.width, size.height, o.settings, &stats);
     }
-    write_exr(frame_path(o.out, f, "exr"), frame);
-    write_preview_png(frame_path(o.out, f, "png"), frame);
+    require_finite_output(frame, "frame " + std::to_string(f) + " of scene '" + scene.name + "'",
+                          [](const std::string&) { return std::string("render"); });
+    write_exr(out.file(frame_name(f, "exr")), frame);
+    write_preview_png(out.file(frame_name(f, "png")), frame);
     std::printf("frame %d  t = %.4f s  %.2f Mrays/s  -> %s\n", f, scene.time_of_frame(f), 1e-6 * double(stats.rays) / stats.seconds,
                 frame_path(o.out, f, "exr").c_str());
     total.rays += stats.rays;
     total.seconds += stats.seconds;
   }
+  out.commit();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const int count = frames.last - frames.first + 1;
   std::printf("rendered %d frame(s) of '%s' at %dx%d, %d spp, in %.2f s; EXR layers in docs/buffers.md, previews *.png\n",

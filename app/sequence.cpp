@@ -5,22 +5,20 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 namespace rtdr {
 
-std::string frame_path(const std::string& dir, int index, const char* ext) {
+std::string frame_name(int index, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", index, ext);
-  return (std::filesystem::path(dir) / name).string();
+  return name;
 }
 
-void make_output_dir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw Error("--out '" + dir + "' is not a directory that can be created (" + ec.message() + ")");
+std::string frame_path(const std::string& dir, int index, const char* ext) {
+  return (std::filesystem::path(dir) / frame_name(index, ext)).string();
 }
 
 std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::string& range) {
@@ -35,8 +33,14 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
     const auto [end, err] = std::from_chars(name.data() + 6, name.data() + name.size() - 4, index);
     if (err == std::errc() && end == name.data() + name.size() - 4) frames.push_back({index, entry.path().string()});
   }
-  std::sort(frames.begin(), frames.end(), [](const SequenceFrame& a, const SequenceFrame& b) { return a.index < b.index; });
+  std::sort(frames.begin(), frames.end(), [](const SequenceFrame& a, const SequenceFrame& b) {
+    return a.index != b.index ? a.index < b.index : a.path < b.path;  // ties by name: the same error every run
+  });
   if (frames.empty()) throw Error("--in '" + dir + "' holds no frame_NNNN.exr (write some with rtdr render)");
+  for (size_t i = 1; i < frames.size(); ++i)
+    if (frames[i].index == frames[i - 1].index)
+      throw Error("--in '" + dir + "' holds frame " + std::to_string(frames[i].index) + " twice: '" +
+                  frames[i - 1].path + "' and '" + frames[i].path + "'");
   if (range.empty()) return frames;
   const FrameRange r = parse_frames(range);
   std::vector<SequenceFrame> selected;
@@ -48,7 +52,7 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
   return selected;
 }
 
-Frame read_filter_input(const std::string& path, SequenceShape& shape) {
+Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
   Frame frame = read_exr(path);
   if (shape.first.source.empty()) {
     shape.first = Frame(frame.width(), frame.height());
@@ -56,11 +60,20 @@ Frame read_filter_input(const std::string& path, SequenceShape& shape) {
   } else {
     require_same_size(shape.first, frame);  // names both files
   }
-  // Every float layer a method reads must be finite; ids are checked by their own readers.
-  require_finite(frame, {"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B", "albedo.R",
-                         "albedo.G", "albedo.B", "emission.R", "emission.G", "emission.B", "depth.Z", "depth.dX",
-                         "depth.dY", "normal.X", "normal.Y", "normal.Z", "motion.X", "motion.Y"});
+  require_finite(frame, channels.floats);                             // present, float and finite
+  for (const std::string& name : channels.uints) frame.uint_channel(name);  // present and uint
   return frame;
+}
+
+void require_finite_output(const Frame& frame, const std::string& what,
+                           const std::function<std::string(const std::string& channel)>& pass_of) {
+  for (const auto& [name, plane] : frame.float_channels())
+    for (int y = 0; y < plane.height; ++y)
+      for (int x = 0; x < plane.width; ++x)
+        if (!std::isfinite(plane.at(x, y)))
+          throw Error(what + ": pass " + pass_of(name) + " wrote " + (std::isnan(plane.at(x, y)) ? "NaN" : "Inf") +
+                      " to '" + name + "' at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                      "); nothing was written");
 }
 
 }  // namespace rtdr

@@ -5,7 +5,9 @@
 
 #include "app/commands.h"
 #include "core/frame.h"
+#include "filters/method.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,14 +19,13 @@ struct SequenceFrame {
 };
 
 // The frames of DIR in index order, restricted to `range` when given ("" = all). Throws rtdr::Error when
-// DIR is missing, holds no frame_NNNN.exr, or lacks a frame of the range.
+// DIR is missing, holds no frame_NNNN.exr, lacks a frame of the range, or names one index twice
+// (frame_001.exr beside frame_0001.exr).
 std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::string& range);
 
-// DIR/frame_NNNN.<ext>, the name every command reads and writes frames under.
+// frame_NNNN.<ext>, the name every command reads and writes frames under, and DIR/frame_NNNN.<ext>.
+std::string frame_name(int index, const char* ext);
 std::string frame_path(const std::string& dir, int index, const char* ext);
-
-// Creates an --out directory (and its parents); throws rtdr::Error when that is impossible.
-void make_output_dir(const std::string& dir);
 
 // The size of a sequence and the file that set it: every frame must match the first. `first` holds no planes,
 // only the first frame's size and source, for core/exr_io.h's require_same_size.
@@ -32,8 +33,14 @@ struct SequenceShape {
   Frame first;
 };
 
-// Reads one frame and checks it as filter input: its layers are finite, and its size is `shape`'s (the first
-// frame read sets `shape`). Throws a one-line rtdr::Error naming the file(s).
-Frame read_filter_input(const std::string& path, SequenceShape& shape);
+// Reads one frame and checks it as the input of a method that reads `channels` (Method::inputs()): each is
+// present, of its type, and finite, and the frame's size is `shape`'s (the first frame read sets `shape`).
+// Throws a one-line rtdr::Error naming the file(s).
+Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels);
+
+// Checks a frame before it is written: every float channel is finite. Otherwise throws a one-line rtdr::Error
+// naming `what` (the frame), the channel, the pass that wrote it (`pass_of(channel)`) and the pixel.
+void require_finite_output(const Frame& frame, const std::string& what,
+                           const std::function<std::string(const std::string& channel)>& pass_of);
 
 }  // namespace rtdr

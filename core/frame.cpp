@@ -35,6 +35,8 @@ bool Frame::has(const std::string& name) const { return floats_.count(name) || u
 
 const FloatPlane& Frame::float_channel(const std::string& name) const {
   auto it = floats_.find(name);
+  if (it == floats_.end() && uints_.count(name))
+    throw Error(where(*this) + " stores channel '" + name + "' as uint; it must be float (see docs/buffers.md)");
   if (it == floats_.end())
     throw Error(where(*this) + " has no float channel '" + name + "' (see docs/buffers.md)");
   return it->second;
@@ -42,6 +44,8 @@ const FloatPlane& Frame::float_channel(const std::string& name) const {
 
 const UIntPlane& Frame::uint_channel(const std::string& name) const {
   auto it = uints_.find(name);
+  if (it == uints_.end() && floats_.count(name))
+    throw Error(where(*this) + " stores channel '" + name + "' as float; it must be uint (see docs/buffers.md)");
   if (it == uints_.end())
     throw Error(where(*this) + " has no uint channel '" + name + "' (see docs/buffers.md)");
   return it->second;

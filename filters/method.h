@@ -27,6 +27,13 @@ inline constexpr const char* kTransferPass = "transfer";
 // A frame's total, as rtdr bench and rtdr eval report it: the sum of its pass times without kTransferPass.
 double total_ms(const PassTimes& times);
 
+// The channels a method reads from every input frame, by type. `rtdr filter` checks all of them in every frame
+// (present, of this type, and, for floats, finite) before it writes anything.
+struct InputChannels {
+  std::vector<std::string> floats;
+  std::vector<std::string> uints;
+};
+
 class Method {
  public:
   virtual ~Method() = default;
@@ -41,6 +48,8 @@ class Method {
   virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
   // The passes probe() accepts.
   virtual std::vector<std::string> probe_passes() const = 0;
+  // Every channel filter() reads from its input frame.
+  virtual InputChannels inputs() const = 0;
   const PassTimes& pass_times() const { return times_; }
 
  protected:
@@ -58,5 +67,8 @@ std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& p
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const SvgfParams& params = {});
 std::vector<std::string> method_names();
+// The pass that writes output or dump channel `channel` ("color.R" -> "modulate", "filter.direct.level2.R" ->
+// "atrous"), for error messages; "?" for a channel no pass writes.
+std::string pass_writing(const std::string& channel);
 
 }  // namespace rtdr

@@ -33,6 +33,7 @@ class WithTransfer : public rtdr::Method {
     return inner_->probe(pass, x, y, stream, level);
   }
   std::vector<std::string> probe_passes() const override { return inner_->probe_passes(); }
+  rtdr::InputChannels inputs() const override { return inner_->inputs(); }
 
  private:
   std::unique_ptr<rtdr::Method> inner_ = rtdr::make_method("none");

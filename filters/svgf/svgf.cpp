@@ -104,6 +104,17 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
   return s.filtered();
 }
 
+InputChannels svgf_input_channels(const SvgfOptions& options) {
+  InputChannels c;
+  c.floats = {"depth.Z",  "depth.dX",   "depth.dY",   "normal.X",   "normal.Y",   "normal.Z",   "motion.X",
+              "motion.Y", "albedo.R",   "albedo.G",   "albedo.B",   "emission.R", "emission.G", "emission.B",
+              "direct.R", "direct.G",   "direct.B",   "indirect.R", "indirect.G", "indirect.B"};
+  if (options.spatial == SpatialFilter::Eaw)
+    for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
+  c.uints = {"id.mesh"};
+  return c;
+}
+
 Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   times_.clear();
   surface_ = SurfacePlanes::from_frame(in);

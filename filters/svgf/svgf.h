@@ -31,6 +31,11 @@ struct SvgfOptions {
   TaaParams taa_params;
 };
 
+// The channels a filter with `options` reads from each input frame: the G-buffer (SurfacePlanes::from_frame),
+// albedo, emission, both illumination streams, and `position` for the EAW spatial filter. The Vulkan ports read
+// the same (gpu/svgf_vulkan.h).
+InputChannels svgf_input_channels(const SvgfOptions& options);
+
 class SvgfFilter : public Method {
  public:
   explicit SvgfFilter(const SvgfOptions& options);
@@ -39,6 +44,7 @@ class SvgfFilter : public Method {
   void reset() override;
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
+  InputChannels inputs() const override { return svgf_input_channels(options_); }
 
  private:
   // What one illumination stream carries from frame to frame, and what each of its passes saw last frame.

@@ -34,7 +34,13 @@ struct FrameRange {
   int first;
   int last;  // inclusive
 };
-FrameRange parse_frames(const std::string& text);  // "A-B" or "A", 0 <= A <= B
+FrameRange parse_frames(const std::string& text);  // "A-B" or "A", 0 <= A <= B <= kMaxFrameIndex (core/frame.h)
+// "X,Y", two whole decimal numbers; throws rtdr::Error naming `flag` otherwise (trailing text, overflow).
+struct Pixel {
+  int x;
+  int y;
+};
+Pixel parse_pixel(const std::string& text, const std::string& flag);
 // The SVGF tunables as flags of `sub`, one per row of the table in filters/svgf/svgf_params.h.
 void add_svgf_flags(CLI::App* sub, SvgfParams& p);
 

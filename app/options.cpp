@@ -1,6 +1,7 @@
 // Parsing of the option values shared by several subcommands.
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/frame.h"        // kMaxFrameIndex
 #include "raster/visibility.h"  // kMaxImageSize: the rasterizer's limit
 
 #include <charconv>
@@ -36,9 +37,18 @@ FrameRange parse_frames(const std::string& text) {
                       : parse_int(std::string_view(text).substr(0, dash), r.first) &&
                             parse_int(std::string_view(text).substr(dash + 1), r.last);
   if (!ok) throw Error("--frames '" + text + "' is not A-B or A, e.g. 0-9");
-  if (r.first < 0 || r.last < r.first)
-    throw Error("--frames '" + text + "': need 0 <= A <= B");
+  if (r.first < 0 || r.last < r.first || r.last > kMaxFrameIndex)
+    throw Error("--frames '" + text + "': need 0 <= A <= B <= " + std::to_string(kMaxFrameIndex));
   return r;
+}
+
+Pixel parse_pixel(const std::string& text, const std::string& flag) {
+  const size_t comma = text.find(',');
+  Pixel p{};
+  if (comma == std::string::npos || !parse_int(std::string_view(text).substr(0, comma), p.x) ||
+      !parse_int(std::string_view(text).substr(comma + 1), p.y))
+    throw Error(flag + " '" + text + "' is not X,Y (two whole numbers, e.g. 640,360)");
+  return p;
 }
 
 void add_svgf_flags(CLI::App* sub, SvgfParams& p) {

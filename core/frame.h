@@ -17,6 +17,10 @@
 
 namespace rtdr {
 
+// The largest frame index any command takes (--frames 0-999999, frame_999999.exr). With it, no loop over a
+// user's frame range can overflow an int, and a mistyped range fails at once instead of filling a disk.
+inline constexpr int kMaxFrameIndex = 999'999;
+
 // The id stored where a pixel sees no surface (same value as Embree's RTC_INVALID_GEOMETRY_ID).
 inline constexpr uint32_t kInvalidId = RTDR_INVALID_ID;  // core/frame_shared.h
 

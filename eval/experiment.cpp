@@ -10,8 +10,8 @@
 #include "filters/svgf/tonemap.h"
 #include "scenes/gltf_loader.h"
 
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -60,6 +60,13 @@ void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<F
   }
 }
 
+// Parses a whole decimal number ("4", "0.05", "1e-4"); false on anything else ("2.9junk", "", " 4").
+bool parse_double(const std::string& text, double& value) {
+  const char* end = text.data() + text.size();
+  const auto [stop, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && stop == end;
+}
+
 }  // namespace
 
 MethodSpec parse_method_spec(const std::string& text) {
@@ -81,8 +88,7 @@ MethodSpec parse_method_spec(const std::string& text) {
       if (value_text != "fp32" && value_text != "fp16")
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
-    } else if (eq == std::string::npos || std::sscanf(value_text.c_str(), "%lf", &value) != 1 ||
-               !set_param(spec.svgf, key, value)) {
+    } else if (eq == std::string::npos || !parse_double(value_text, value) || !set_param(spec.svgf, key, value)) {
       throw Error("method spec '" + text + "': '" + parts[i] +
                   "' is not parameter=value of svgf_params.h, backend=cpu|vulkan or illumination=fp32|fp16");
     }
@@ -121,6 +127,14 @@ RenderSettings reference_settings(const EvalConfig& c) {
 }
 
 EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+  if (c.first_frame < 0 || c.last_frame < c.first_frame || c.last_frame > kMaxFrameIndex)
+    throw Error("frames " + std::to_string(c.first_frame) + "-" + std::to_string(c.last_frame) +
+                ": need 0 <= first <= last <= " + std::to_string(kMaxFrameIndex));
+  // SSIM needs one whole window [Wang04 Sec. III-C]: say so before rendering anything, not after.
+  const int window = 2 * kSsimRadius + 1;
+  if (c.width < window || c.height < window)
+    throw Error("size " + std::to_string(c.width) + "x" + std::to_string(c.height) + ": evaluation needs at least " +
+                std::to_string(window) + "x" + std::to_string(window) + " (the SSIM window)");
   const Scene scene = load_scene(c.scene);
   FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
@@ -136,7 +150,7 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<Frame> inputs;
   std::vector<RgbPlane> ref_colour, ref_display;
   const TonemapParams tonemap_params;
-  for (int f = c.first_frame; f <= c.last_frame; ++f) {
+  for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
     inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
     tick();
     ref_colour.push_back(frame_colour(cache.get(f, c.width, c.height, reference_settings(c))));

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 
+#include <cmath>
 #include <sstream>
 
 namespace rtdr {
@@ -14,6 +15,14 @@ void check_params(const std::string& what, const std::vector<ParamInfo>& table, 
           << table[i].max << "] (" << table[i].source << ")";
       throw Error(msg.str());
     }
+}
+
+void check_param_value(const char* name, double value, double lo, double hi, bool whole) {
+  if (value >= lo && value <= hi && (!whole || value == std::floor(value))) return;  // false for NaN
+  std::ostringstream msg;
+  msg << "parameter " << name << " = " << value << " is not " << (whole ? "a whole number" : "a number") << " in ["
+      << lo << ", " << hi << "]";
+  throw Error(msg.str());
 }
 
 std::string describe_params(const std::vector<ParamInfo>& table, const std::vector<double>& values) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rtdr {
@@ -19,6 +20,10 @@ struct ParamInfo {
 void check_params(const std::string& what, const std::vector<ParamInfo>& table, const std::vector<double>& values);
 // "name = value  (symbol; source)", one line per parameter.
 std::string describe_params(const std::vector<ParamInfo>& table, const std::vector<double>& values);
+// Throws rtdr::Error unless `value` lies in [lo, hi] and, when `whole` (an int parameter), is a whole number. It is
+// checked as a double, before any cast: casting 1e30 or NaN to int is undefined behaviour, and 2.9 would
+// silently become 2.
+void check_param_value(const char* name, double value, double lo, double hi, bool whole);
 
 }  // namespace rtdr
 
@@ -28,9 +33,11 @@ std::string describe_params(const std::vector<ParamInfo>& table, const std::vect
 #define RTDR_PARAM_ROW(type, name, def, lo, hi, symbol, source) \
   ::rtdr::ParamInfo{#name, symbol, source, double(def), double(lo), double(hi)},
 #define RTDR_PARAM_VALUE(type, name, def, lo, hi, symbol, source) double(params.name),
-// Sets member `name` of `params` to `value` when `key` names it (inside a function returning bool).
-#define RTDR_PARAM_SET(type, name, def, lo, hi, symbol, source) \
-  if (key == #name) {                                              \
-    params.name = type(value);                                     \
-    return true;                                                   \
+// Sets member `name` of `params` to `value` when `key` names it (inside a function returning bool), after
+// checking the value against the row's range and type.
+#define RTDR_PARAM_SET(type, name, def, lo, hi, symbol, source)                                  \
+  if (key == #name) {                                                                             \
+    ::rtdr::check_param_value(#name, value, double(lo), double(hi), std::is_integral_v<type>);     \
+    params.name = type(value);                                                                    \
+    return true;                                                                                  \
   }

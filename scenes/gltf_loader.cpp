@@ -237,25 +237,43 @@ Camera load_camera(const Source& src, const Scene& scene, const std::vector<int>
     const tinygltf::Camera& gc = src.model.cameras[size_t(c)];
     const std::string what = "camera " + label(gc.name, size_t(c));
     if (gc.type != "perspective") src.fail(what + " is " + gc.type + "; only perspective cameras are supported");
-    const tinygltf::PerspectiveCamera& p = gc.perspective;
-    if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi))
-      src.fail(what + " yfov " + std::to_string(p.yfov) + " is not in (0, pi)");
-    if (!(p.znear > 0.0 && std::isfinite(p.znear))) src.fail(what + " znear must be positive");
-    if (!(p.zfar == 0.0 || (p.zfar > p.znear && std::isfinite(p.zfar))))
+    // Checked as the floats the camera keeps, not as the JSON's doubles: a znear of 1e-300 is positive as a
+    // double and 0 as a float. std::isnormal also refuses a float too small to divide by (a subnormal).
+    const float yfov = float(gc.perspective.yfov), znear = float(gc.perspective.znear);
+    const float zfar = float(gc.perspective.zfar);
+    if (!(yfov > 0.0f && yfov < std::numbers::pi_v<float>) || !std::isnormal(yfov))
+      src.fail(what + " yfov " + std::to_string(gc.perspective.yfov) + " is not in (0, pi)");
+    if (!(znear > 0.0f && std::isnormal(znear)))
+      src.fail(what + " znear " + std::to_string(gc.perspective.znear) + " is not a positive float");
+    if (!(zfar == 0.0f || (zfar > znear && std::isfinite(zfar))))
       src.fail(what + " zfar must be 0 (infinite) or beyond znear");
-    return Camera{int(i), float(p.yfov), float(p.znear), float(p.zfar)};
+    return Camera{int(i), yfov, znear, zfar};
   }
   src.fail("has no camera (add a node with a perspective camera)");
+}
+
+// glTF 2.x only: asset.version is "<major>.<minor>" (glTF spec 3.2, required), and a loader refuses a major version
+// it does not know. tinygltf reads the field without checking it. minVersion, when given, names the lowest
+// version that can read the asset; this loader reads 2.0.
+void check_version(const Source& src) {
+  const std::string& version = src.model.asset.version;
+  const bool two_dot = version.size() > 2 && version.rfind("2.", 0) == 0 &&
+                       version.find_first_not_of("0123456789", 2) == std::string::npos;
+  if (!two_dot) src.fail("asset.version '" + version + "' is not glTF 2.x (this loader reads glTF 2.0)");
+  const std::string& min_version = src.model.asset.minVersion;
+  if (!min_version.empty() && min_version != "2.0")
+    src.fail("asset.minVersion '" + min_version + "' needs a newer loader than this one (glTF 2.0)");
 }
 
 float load_fps(const Source& src) {
   const tinygltf::Model& m = src.model;
   const int s = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (size_t(s) >= m.scenes.size() || !m.scenes[size_t(s)].extras.Has("rtdr_fps")) return 30.0f;
-  const tinygltf::Value& fps = m.scenes[size_t(s)].extras.Get("rtdr_fps");
-  if (!fps.IsNumber() || !(fps.GetNumberAsDouble() > 0.0) || !std::isfinite(fps.GetNumberAsDouble()))
-    src.fail("scene extras rtdr_fps must be a positive number");
-  return float(fps.GetNumberAsDouble());
+  const tinygltf::Value& value = m.scenes[size_t(s)].extras.Get("rtdr_fps");
+  // Checked as the float the scene keeps: 1e-300 frames per second is positive as a double and 0 as a float.
+  const float fps = value.IsNumber() ? float(value.GetNumberAsDouble()) : 0.0f;
+  if (!(fps > 0.0f && std::isnormal(fps))) src.fail("scene extras rtdr_fps must be a positive float");
+  return fps;
 }
 
 // One Instance per (node, primitive) of every node with a mesh, in Scene node order.
@@ -301,6 +319,7 @@ Scene load_scene(const std::string& name_or_path) {
   scene.name = std::filesystem::path(scene.source).stem().string();
   const tinygltf::Model model = parse_file(scene.source);
   const Source src{model, scene.source};
+  check_version(src);
 
   gltf::load_materials(src, scene);
   std::vector<int> first_mesh_of_gltf_mesh;  // glTF mesh -> its primitive 0's Mesh

@@ -1,6 +1,8 @@
 // Running the real `rtdr` binary (RTDR_EXE) from tests, as a user would, in scratch folders.
 #pragma once
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,6 +44,35 @@ inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const st
   const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(RTDR_EXE) + " " + args + " >" +
                           out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+}
+
+// Runs `rtdr` with `args` as its argument vector, through no shell: a quote, a space or "$(...)" in an
+// argument reaches rtdr as it is. stdout and stderr are captured in files of `dir`; `env` entries
+// ("NAME=value") are added to its environment.
+inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::path& dir,
+                               const std::vector<std::string>& env = {}) {
+  std::vector<std::string> argv_text = {RTDR_EXE};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv, envp;
+  for (std::string& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env_text(env);
+  for (char** e = environ; *e; ++e) env_text.push_back(*e);  // later duplicates lose: ours come first
+  for (std::string& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return {-1, "", "cannot start " RTDR_EXE};
+  int status = 0;
+  waitpid(pid, &status, 0);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
 }
 

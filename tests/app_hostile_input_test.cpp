@@ -1,0 +1,666 @@
+// Hostile input: what a careless or malicious user can hand `rtdr`, run through the real binary (RTDR_EXE)
+// with an argument vector (no shell, so quotes and "$(...)" reach rtdr as they are). Labelled `hostile`:
+// `ctest -L hostile`. docs/reliability.md lists the promises these cases keep. Every case ends one of two ways:
+// - refused: exit status 1 or 2 (never a crash), exactly one line on stderr starting "rtdr: error: ", and no
+//   output at all: the --out folder is not created (or keeps what it held), and no staging folder is left;
+// - accepted: exit status 0 and every float channel of every frame written is finite.
+#include "core/exr_io.h"
+#include "core/frame.h"
+#include "core/subprocess.h"
+
+#include "cli_fixtures.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using rtdr::Frame;
+
+namespace {
+
+using namespace rtdr::cli;
+
+fs::path scratch(const std::string& name) { return rtdr::cli::scratch("rtdr_hostile_test", name); }
+
+// The input sequence every filter case starts from: frames 0-2 of cornell at 16x9, rendered once per process.
+const fs::path& sequence() {
+  static const fs::path dir = [] {
+    const fs::path d = scratch("sequence");
+    const RunResult r = run_rtdr_args({"render", "--scene", "cornell", "--frames", "0-2", "--size", "16x9", "--out",
+                                       (d / "in").string()}, d);
+    REQUIRE(r.exit_code == 0);
+    return d / "in";
+  }();
+  return dir;
+}
+
+// A copy of the sequence in scratch folder `name`/in, each frame changed by `change(frame, index)`.
+fs::path changed_sequence(const std::string& name, const std::function<void(Frame&, int)>& change) {
+  const fs::path in = scratch(name) / "in";
+  fs::create_directories(in);
+  for (int f = 0; f < 3; ++f) {
+    const std::string file = "frame_000" + std::to_string(f) + ".exr";
+    Frame frame = rtdr::read_exr((sequence() / file).string());
+    change(frame, f);
+    rtdr::write_exr((in / file).string(), frame);
+  }
+  return in;
+}
+
+// A copy of `f` without channel `drop`.
+Frame without(const Frame& f, const std::string& drop) {
+  Frame out(f.width(), f.height());
+  for (const auto& [name, plane] : f.float_channels())
+    if (name != drop) out.add_float(name).data = plane.data;
+  for (const auto& [name, plane] : f.uint_channels())
+    if (name != drop) out.add_uint(name).data = plane.data;
+  return out;
+}
+
+// A shipped scene's glTF, as JSON to edit, and a place to write the edited copy.
+json scene_json(const std::string& name) {
+  return json::parse(read_text(fs::path(RTDR_SOURCE_DIR) / "scenes" / (name + ".gltf")));
+}
+fs::path write_scene(const fs::path& dir, const json& scene, const std::string& file = "scene.gltf") {
+  const fs::path path = dir / file;
+  std::ofstream(path) << scene.dump();
+  return path;
+}
+
+// Staging folders (core/atomic_file.h) left anywhere below `dir`, or below its deepest existing folder.
+bool staging_left(fs::path dir) {
+  while (!fs::is_directory(dir)) dir = dir.parent_path();
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().filename().string().rfind(".rtdr-staging-", 0) == 0) return true;
+  return false;
+}
+
+// The refused outcome: a one-line error, a non-zero exit that is not a crash, and no output at `out`.
+void require_refused(const RunResult& r, const fs::path& out, const std::string& says = "") {
+  INFO("stderr: " << r.err);
+  CHECK((r.exit_code == 1 || r.exit_code == 2));
+  // The error is one line, the last; lines before it can only be progress ("eval cornell  67% ...", printed
+  // to stderr when it is not a terminal), never a second error or a traceback.
+  const std::string last = rtdr::last_line(r.err);
+  CHECK(last.rfind("rtdr: error: ", 0) == 0);
+  std::istringstream lines(r.err.substr(0, r.err.size() - std::min(r.err.size(), last.size() + 1)));
+  for (std::string line; std::getline(lines, line);) CHECK(line.find("% ") != std::string::npos);
+  if (!says.empty()) CHECK(last.find(says) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  CHECK_FALSE(staging_left(out.parent_path()));
+}
+
+// The accepted outcome: exit 0, and every frame_*.exr in `out` holds only finite floats.
+void require_finite_frames(const RunResult& r, const fs::path& out, size_t frames) {
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  size_t seen = 0;
+  for (const std::string& name : files_in(out)) {
+    if (name.size() < 4 || name.substr(name.size() - 4) != ".exr") continue;
+    ++seen;
+    const Frame f = rtdr::read_exr((out / name).string());
+    for (const auto& [channel, plane] : f.float_channels())
+      for (float v : plane.data) REQUIRE(std::isfinite(v));
+  }
+  CHECK(seen == frames);
+  CHECK_FALSE(staging_left(out.parent_path()));
+}
+
+RunResult filter(const fs::path& in, const fs::path& out, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"filter", "--in", in.string(), "--out", out.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_rtdr_args(args, out.parent_path());
+}
+
+RunResult render(const fs::path& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), "render");
+  return run_rtdr_args(args, dir);
+}
+
+}  // namespace
+
+// ---- Defect 1: the shell injection in rtdr eval ----
+
+TEST_CASE("eval: a quote, a semicolon and $(...) in --out and --scene are only names") {
+  const fs::path dir = scratch("eval_quote");
+  const fs::path scene = write_scene(dir, scene_json("cornell"), "it's; $(touch pwned_scene).gltf");
+  const fs::path out = dir / "o'; touch pwned_out; echo '";
+  const RunResult r = run_rtdr_args({"eval", "--scene", scene.string(), "--methods", "none", "--frames", "0-1",
+                                     "--size", "16x12", "--ref-spp", "1", "--cache", "", "--out", out.string()}, dir);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(files_in(out) == std::set<std::string>{"error_over_frames.png", "metrics.csv", "speed_vs_accuracy.png",
+                                               "strip.png", "temporal_error.png"});
+  for (const fs::path& cwd : {dir, fs::current_path()}) {
+    CHECK_FALSE(fs::exists(cwd / "pwned_out"));
+    CHECK_FALSE(fs::exists(cwd / "pwned_scene"));
+  }
+}
+
+TEST_CASE("eval: a chart step that fails (disk full) is one line and leaves no output, no 0-byte PNG") {
+  const fs::path dir = scratch("eval_disk_full");
+  // A stand-in matplotlib whose savefig starts the file and then fails as a full disk does.
+  fs::create_directories(dir / "fake" / "matplotlib");
+  std::ofstream(dir / "fake" / "matplotlib" / "__init__.py") << "def use(backend):\n    pass\n";
+  std::ofstream(dir / "fake" / "matplotlib" / "pyplot.py")
+      << "import errno\n"
+         "class _Anything:\n"
+         "    def __getattr__(self, name):\n"
+         "        return lambda *a, **k: _Anything()\n"
+         "    def savefig(self, path, **k):\n"
+         "        open(path, 'wb').close()\n"
+         "        raise OSError(errno.ENOSPC, 'No space left on device')\n"
+         "def subplots(*a, **k):\n"
+         "    return _Anything(), _Anything()\n"
+         "def close(fig):\n"
+         "    pass\n";
+  const fs::path out = dir / "out";
+  const RunResult r = run_rtdr_args({"eval", "--scene", "cornell", "--methods", "none", "--frames", "0-1", "--size",
+                                     "16x12", "--ref-spp", "1", "--cache", "", "--out", out.string()},
+                                    dir, {"PYTHONPATH=" + (dir / "fake").string()});
+  require_refused(r, out, "No space left on device");
+}
+
+TEST_CASE("eval: a rerun that fails keeps the previous run's outputs as they were") {
+  const fs::path dir = scratch("eval_rerun");
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "metrics.csv") << "the previous run\n";
+  const RunResult r = run_rtdr_args({"eval", "--scene", "cornell", "--methods", "svgf:alpha=2", "--frames", "0-1",
+                                     "--size", "16x12", "--out", out.string()}, dir);
+  CHECK(r.exit_code == 1);
+  CHECK(read_text(out / "metrics.csv") == "the previous run\n");
+  CHECK(files_in(out) == std::set<std::string>{"metrics.csv"});
+}
+
+// ---- Defect 2: frame ranges ----
+
+TEST_CASE("render: --frames 2147483647 is refused before any frame is rendered") {
+  const fs::path dir = scratch("frames_max");
+  require_refused(render(dir, {"--scene", "cornell", "--frames", "2147483647", "--size", "8x8", "--out",
+                               (dir / "out").string()}), dir / "out", "999999");
+}
+
+TEST_CASE("render: --frames 0-2147483647 and 999999-1000000 are refused") {
+  const fs::path dir = scratch("frames_range");
+  for (const char* frames : {"0-2147483647", "999999-1000000", "0-99999999999"}) {
+    INFO(frames);
+    require_refused(render(dir, {"--scene", "cornell", "--frames", frames, "--size", "8x8", "--out",
+                                 (dir / "out").string()}), dir / "out");
+  }
+}
+
+TEST_CASE("render: frame 999999, the largest, renders") {
+  const fs::path dir = scratch("frames_last");
+  const RunResult r = render(dir, {"--scene", "cornell", "--frames", "999999", "--size", "4x4", "--out",
+                                   (dir / "out").string()});
+  require_finite_frames(r, dir / "out", 1);
+  CHECK(fs::exists(dir / "out" / "frame_999999.exr"));
+}
+
+TEST_CASE("render: malformed and reversed --frames are refused") {
+  const fs::path dir = scratch("frames_bad");
+  for (const char* frames : {"", "5-3", "-1", "1-2-3", "a-b", " 1", "1 ", "+1", "0x10"}) {
+    INFO("'" << frames << "'");
+    require_refused(render(dir, {"--scene", "cornell", "--frames", frames, "--size", "8x8", "--out",
+                                 (dir / "out").string()}), dir / "out");
+  }
+}
+
+// ---- Defect 3: a failed run leaves no output at all ----
+
+TEST_CASE("filter: frame 2 without id.mesh fails before frames 0 and 1 are written") {
+  const fs::path in = changed_sequence("no_id_mesh", [](Frame& f, int i) {
+    if (i == 2) f = without(f, "id.mesh");
+  });
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "id.mesh");
+}
+
+TEST_CASE("filter: an id channel stored as float is refused") {
+  const fs::path in = changed_sequence("float_id", [](Frame& f, int i) {
+    if (i != 1) return;
+    const std::vector<uint32_t> ids = f.uint_channel("id.mesh").data;
+    f = without(f, "id.mesh");
+    rtdr::FloatPlane& plane = f.add_float("id.mesh");
+    for (size_t k = 0; k < ids.size(); ++k) plane.data[k] = float(ids[k]);
+  });
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "as float");
+}
+
+TEST_CASE("filter --method eaw: frame 2 without position fails before anything is written") {
+  const fs::path in = changed_sequence("no_position", [](Frame& f, int i) {
+    if (i == 2) f = without(f, "position.Y");
+  });
+  require_refused(filter(in, in.parent_path() / "out", {"--method", "eaw"}), in.parent_path() / "out", "position.Y");
+}
+
+TEST_CASE("filter: a failed rerun into an existing folder leaves its files as they were") {
+  const fs::path in = changed_sequence("rerun", [](Frame& f, int i) {
+    if (i == 2) f.float_channel("direct.G").data[3] = std::nanf("");
+  });
+  const fs::path out = in.parent_path() / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "frame_0000.png") << "older";
+  const RunResult r = filter(in, out);
+  CHECK(r.exit_code == 1);
+  CHECK(files_in(out) == std::set<std::string>{"frame_0000.png"});
+  CHECK(read_text(out / "frame_0000.png") == "older");
+  CHECK_FALSE(staging_left(in.parent_path()));
+}
+
+TEST_CASE("render: --out below a file is refused before any frame is rendered, and the file is kept") {
+  const fs::path dir = scratch("render_into_file");
+  std::ofstream(dir / "a_file") << "x";
+  require_refused(render(dir, {"--scene", "cornell", "--frames", "0", "--size", "8x8", "--out",
+                               (dir / "a_file" / "out").string()}), dir / "a_file" / "out");
+  CHECK(read_text(dir / "a_file") == "x");
+}
+
+// ---- Defect 4: non-finite values in and out ----
+
+TEST_CASE("filter --method eaw: NaN in position is refused, naming the channel and pixel") {
+  const fs::path in = changed_sequence("nan_position", [](Frame& f, int i) {
+    if (i == 1) f.float_channel("position.X").data[5] = std::nanf("");
+  });
+  require_refused(filter(in, in.parent_path() / "out", {"--method", "eaw"}), in.parent_path() / "out",
+                  "position.X");
+}
+
+TEST_CASE("filter: a depth gradient of 1e38 gives finite output or a one-line error") {
+  const fs::path in = changed_sequence("huge_gradient", [](Frame& f, int) {
+    for (float& v : f.float_channel("depth.dX").data) v = 1e38f;
+  });
+  const fs::path out = in.parent_path() / "out";
+  const RunResult r = filter(in, out);
+  if (r.exit_code == 0)
+    require_finite_frames(r, out, 3);
+  else
+    require_refused(r, out, "pixel");
+}
+
+TEST_CASE("filter: radiance of 3e38 gives finite output or a one-line error naming the pass") {
+  const fs::path in = changed_sequence("huge_radiance", [](Frame& f, int i) {
+    if (i == 1) f.float_channel("indirect.R").data[7] = 3e38f;
+  });
+  const fs::path out = in.parent_path() / "out";
+  const RunResult r = filter(in, out);
+  if (r.exit_code == 0)
+    require_finite_frames(r, out, 3);
+  else
+    require_refused(r, out, "pass");
+}
+
+TEST_CASE("filter: NaN, +Inf and -Inf radiance are refused") {
+  for (const float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+    const fs::path in = changed_sequence("bad_radiance", [bad](Frame& f, int i) {
+      if (i == 0) f.float_channel("direct.B").data[0] = bad;
+    });
+    require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "direct.B");
+  }
+}
+
+TEST_CASE("filter: NaN in motion, normal or albedo is refused") {
+  for (const char* channel : {"motion.X", "normal.Z", "albedo.R", "emission.G", "depth.Z"}) {
+    INFO(channel);
+    const fs::path in = changed_sequence("bad_gbuffer", [channel](Frame& f, int i) {
+      if (i == 2) f.float_channel(channel).data[1] = std::nanf("");
+    });
+    require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", channel);
+  }
+}
+
+TEST_CASE("filter: motion vectors pointing far outside the image give finite output") {
+  const fs::path in = changed_sequence("wild_motion", [](Frame& f, int) {
+    for (float& v : f.float_channel("motion.X").data) v = 1e30f;
+    for (float& v : f.float_channel("motion.Y").data) v = -1e30f;
+  });
+  require_finite_frames(filter(in, in.parent_path() / "out"), in.parent_path() / "out", 3);
+}
+
+TEST_CASE("filter: negative albedo and radiance give finite output") {
+  const fs::path in = changed_sequence("negative", [](Frame& f, int) {
+    for (float& v : f.float_channel("albedo.G").data) v = -1.0f;
+    for (float& v : f.float_channel("indirect.B").data) v = -5.0f;
+  });
+  require_finite_frames(filter(in, in.parent_path() / "out"), in.parent_path() / "out", 3);
+}
+
+// ---- Defect 5: input that must be refused ----
+
+TEST_CASE("render: a glTF whose asset.version is not 2.x is refused") {
+  const fs::path dir = scratch("gltf_version");
+  for (const char* version : {"1.0", "3.0", "2", "2.x", "", "20.0"}) {
+    INFO("'" << version << "'");
+    json scene = scene_json("cornell");
+    scene["asset"]["version"] = version;
+    require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                                 "--out", (dir / "out").string()}), dir / "out", "version");
+  }
+}
+
+TEST_CASE("render: a glTF that needs a newer loader (minVersion 2.1) is refused") {
+  const fs::path dir = scratch("gltf_min_version");
+  json scene = scene_json("cornell");
+  scene["asset"]["version"] = "2.1";
+  scene["asset"]["minVersion"] = "2.1";
+  require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                               "--out", (dir / "out").string()}), dir / "out", "minVersion");
+}
+
+TEST_CASE("render: asset.version 2.1 without minVersion renders") {
+  const fs::path dir = scratch("gltf_2_1");
+  json scene = scene_json("cornell");
+  scene["asset"]["version"] = "2.1";
+  require_finite_frames(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                                     "--out", (dir / "out").string()}), dir / "out", 1);
+}
+
+TEST_CASE("filter --in D --out D is refused and leaves the inputs as they were") {
+  const fs::path in = changed_sequence("in_is_out", [](Frame&, int) {});
+  const std::string before = read_text(in / "frame_0001.exr");
+  const RunResult r = filter(in, in);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("overwrite") != std::string::npos);
+  CHECK(read_text(in / "frame_0001.exr") == before);
+  CHECK(files_in(in).size() == 3);
+}
+
+TEST_CASE("filter --in D --out D/. (the same folder, spelled otherwise) is refused") {
+  const fs::path in = changed_sequence("in_is_out_dot", [](Frame&, int) {});
+  const RunResult r = filter(in, in / "." / ".." / "in");
+  CHECK(r.exit_code == 1);
+  CHECK(files_in(in).size() == 3);
+}
+
+TEST_CASE("probe: --pixel with trailing text, overflow or one number is refused") {
+  const fs::path dir = scratch("probe_pixel");
+  for (const char* pixel : {"5,6junk", "99999999999,0", "5", "5,", ",5", "-", "5;6", " 5,6", "0x5,6"}) {
+    INFO("'" << pixel << "'");
+    require_refused(run_rtdr_args({"probe", "--in", sequence().string(), "--frame", "1", "--pixel", pixel}, dir),
+                    dir / "out", "--pixel");
+  }
+}
+
+TEST_CASE("probe: a pixel outside the image is refused") {
+  const fs::path dir = scratch("probe_outside");
+  for (const char* pixel : {"16,0", "0,9", "-1,0", "2147483647,2147483647"}) {
+    INFO(pixel);
+    require_refused(run_rtdr_args({"probe", "--in", sequence().string(), "--frame", "1", "--pixel", pixel}, dir),
+                    dir / "out");
+  }
+}
+
+TEST_CASE("eval: method spec values with trailing text, fractions for ints or out of range are refused") {
+  const fs::path dir = scratch("spec_values");
+  for (const char* spec : {"svgf:atrous_levels=2.9junk", "svgf:atrous_levels=1e30", "svgf:atrous_levels=2.9",
+                           "svgf:atrous_levels=-1", "svgf:alpha=nan", "svgf:alpha=inf", "svgf:alpha=",
+                           "svgf:alpha", "svgf:sigma_l= 4", "svgf:max_history=1e300", "svgf:kernel_size=4"}) {
+    INFO(spec);
+    require_refused(run_rtdr_args({"eval", "--scene", "cornell", "--methods", spec, "--frames", "0-1", "--size",
+                                   "8x8", "--cache", "", "--out", (dir / "out").string()}, dir), dir / "out");
+  }
+}
+
+TEST_CASE("filter: SVGF flags out of range or of the wrong type are refused") {
+  const fs::path dir = scratch("svgf_flags");
+  for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
+           {"--atrous_levels", "1e30"}, {"--atrous_levels", "2.9"}, {"--alpha", "nan"}, {"--alpha", "-0.5"},
+           {"--sigma_l", "inf"}, {"--kernel_size", "4"}}) {
+    INFO(flag[0] << " " << flag[1]);
+    require_refused(filter(sequence(), dir / "out", flag), dir / "out");
+  }
+}
+
+TEST_CASE("render: rtdr_fps and znear that vanish as floats (1e-300) are refused") {
+  const fs::path dir = scratch("tiny_floats");
+  json fps = scene_json("cornell");
+  fps["scenes"][0]["extras"]["rtdr_fps"] = 1e-300;
+  require_refused(render(dir, {"--scene", write_scene(dir, fps).string(), "--frames", "0", "--size", "8x8", "--out",
+                               (dir / "out").string()}), dir / "out", "rtdr_fps");
+  json znear = scene_json("cornell");
+  znear["cameras"][0]["perspective"]["znear"] = 1e-300;
+  require_refused(render(dir, {"--scene", write_scene(dir, znear).string(), "--frames", "0", "--size", "8x8", "--out",
+                               (dir / "out").string()}), dir / "out", "znear");
+}
+
+TEST_CASE("render: rtdr_fps of 1e300 (infinite as a float), a string, or 0 is refused") {
+  const fs::path dir = scratch("bad_fps");
+  for (const json& value : {json(1e300), json("30"), json(0), json(-30)}) {
+    INFO(value.dump());
+    json scene = scene_json("cornell");
+    scene["scenes"][0]["extras"]["rtdr_fps"] = value;
+    require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                                 "--out", (dir / "out").string()}), dir / "out", "rtdr_fps");
+  }
+}
+
+TEST_CASE("render: yfov of 0, pi or 1e-300 and zfar before znear are refused") {
+  const fs::path dir = scratch("bad_camera");
+  for (const auto& [key, value] : std::vector<std::pair<std::string, double>>{
+           {"yfov", 0.0}, {"yfov", 3.1415927}, {"yfov", 1e-300}, {"zfar", 1e-3}, {"znear", -1.0}}) {
+    INFO(key << " = " << value);
+    json scene = scene_json("cornell");
+    scene["cameras"][0]["perspective"][key] = value;
+    require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                                 "--out", (dir / "out").string()}), dir / "out", key);
+  }
+}
+
+TEST_CASE("filter: duplicate frame indices (frame_001.exr beside frame_0001.exr) are refused") {
+  const fs::path in = changed_sequence("duplicates", [](Frame&, int) {});
+  fs::copy_file(in / "frame_0001.exr", in / "frame_001.exr");
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "twice");
+}
+
+// ---- Our own: scenes ----
+
+TEST_CASE("render: a missing scene, a folder, an empty file and binary garbage are refused") {
+  const fs::path dir = scratch("bad_scenes");
+  fs::create_directories(dir / "folder.gltf");
+  std::ofstream(dir / "empty.gltf").close();
+  std::ofstream(dir / "garbage.glb", std::ios::binary) << std::string("glTF\x02\0\0\0\xff\xff\xff\x7f", 12);
+  std::ofstream(dir / "garbage.gltf", std::ios::binary) << std::string("\0\x01\x02\xff", 4);
+  for (const fs::path& scene : {dir / "missing.gltf", dir / "folder.gltf", dir / "empty.gltf", dir / "garbage.glb",
+                               dir / "garbage.gltf"}) {
+    INFO(scene);
+    require_refused(render(dir, {"--scene", scene.string(), "--frames", "0", "--size", "8x8", "--out",
+                                 (dir / "out").string()}), dir / "out");
+  }
+}
+
+TEST_CASE("render: a scene whose accessor points past its buffer is refused") {
+  const fs::path dir = scratch("bad_accessor");
+  json scene = scene_json("cornell");
+  scene["accessors"][0]["count"] = 1 << 30;
+  require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                               "--out", (dir / "out").string()}), dir / "out");
+}
+
+TEST_CASE("render: a scene with a NaN-free but absurd transform (scale 1e30) renders finite frames or is refused") {
+  const fs::path dir = scratch("huge_scale");
+  json scene = scene_json("cornell");
+  scene["nodes"][1]["scale"] = {1e30, 1e30, 1e30};
+  const RunResult r = render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                                   "--out", (dir / "out").string()});
+  if (r.exit_code == 0)
+    require_finite_frames(r, dir / "out", 1);
+  else
+    require_refused(r, dir / "out");
+}
+
+TEST_CASE("render: a scene without a camera is refused") {
+  const fs::path dir = scratch("no_camera");
+  json scene = scene_json("cornell");
+  scene.erase("cameras");
+  for (json& node : scene["nodes"]) node.erase("camera");
+  require_refused(render(dir, {"--scene", write_scene(dir, scene).string(), "--frames", "0", "--size", "8x8",
+                               "--out", (dir / "out").string()}), dir / "out", "camera");
+}
+
+// ---- Our own: render options ----
+
+TEST_CASE("render: malformed and out-of-range --size is refused") {
+  const fs::path dir = scratch("bad_size");
+  for (const char* size : {"0x0", "-5x5", "100000x10", "10x", "x10", " 10x10", "10X10", "10x10x10", "1e3x10"}) {
+    INFO("'" << size << "'");
+    require_refused(render(dir, {"--scene", "cornell", "--frames", "0", "--size", size, "--out",
+                                 (dir / "out").string()}), dir / "out", "--size");
+  }
+}
+
+TEST_CASE("render: odd resolutions (1x1, 33x17, 7x1) render finite frames") {
+  for (const char* size : {"1x1", "33x17", "7x1"}) {
+    INFO(size);
+    const fs::path dir = scratch("odd_size");
+    require_finite_frames(render(dir, {"--scene", "cornell", "--frames", "0", "--size", size, "--out",
+                                       (dir / "out").string()}), dir / "out", 1);
+  }
+}
+
+TEST_CASE("render: --spp 0, --max-bounces -1 and --threads -1 are refused") {
+  const fs::path dir = scratch("bad_numbers");
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"render", "--spp", "0"}, {"render", "--max-bounces", "-1"}, {"--threads", "-1", "render"},
+           {"render", "--spp", "1.5"}, {"render", "--seed", "-1"}}) {
+    std::vector<std::string> full = args;
+    for (const char* a : {"--scene", "cornell", "--frames", "0", "--size", "8x8", "--out"}) full.push_back(a);
+    full.push_back((dir / "out").string());
+    INFO(full[0] << " " << full[1] << " " << full[2]);
+    require_refused(run_rtdr_args(full, dir), dir / "out");
+  }
+}
+
+TEST_CASE("rtdr: an unknown subcommand, an unknown flag and no subcommand are refused") {
+  const fs::path dir = scratch("bad_cli");
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"paint"}, {"render", "--colour", "red"}, {}, {"render", "--out"}}) {
+    require_refused(run_rtdr_args(args, dir), dir / "out");
+  }
+}
+
+// ---- Our own: filter inputs ----
+
+TEST_CASE("filter: a missing --in, an empty folder and a folder of non-frames are refused") {
+  const fs::path dir = scratch("bad_in");
+  fs::create_directories(dir / "empty");
+  fs::create_directories(dir / "other");
+  std::ofstream(dir / "other" / "frame_a.exr") << "x";
+  std::ofstream(dir / "other" / "notes.txt") << "x";
+  for (const fs::path& in : {dir / "missing", dir / "empty", dir / "other"}) {
+    INFO(in);
+    require_refused(filter(in, dir / "out"), dir / "out", "--in");
+  }
+}
+
+TEST_CASE("filter: a truncated EXR and a text file named frame_0001.exr are refused") {
+  const fs::path in = changed_sequence("truncated", [](Frame&, int) {});
+  const std::string bytes = read_text(in / "frame_0001.exr");
+  std::ofstream(in / "frame_0001.exr", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "frame_0001.exr");
+  std::ofstream(in / "frame_0001.exr") << "not an EXR\n";
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "frame_0001.exr");
+}
+
+TEST_CASE("filter: frames of different sizes are refused") {
+  const fs::path in = changed_sequence("sizes", [](Frame& f, int i) {
+    if (i != 2) return;
+    Frame smaller(f.width() - 1, f.height());
+    for (const auto& [name, plane] : f.float_channels()) smaller.add_float(name);
+    for (const auto& [name, plane] : f.uint_channels()) smaller.add_uint(name);
+    f = smaller;
+  });
+  require_refused(filter(in, in.parent_path() / "out"), in.parent_path() / "out", "same size");
+}
+
+TEST_CASE("filter: an unknown method, back end or --frames outside the sequence is refused") {
+  const fs::path dir = scratch("bad_filter_flags");
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--method", "magic"}, {"--backend", "metal"}, {"--frames", "1-5"}, {"--frames", "7"}}) {
+    INFO(extra[0] << " " << extra[1]);
+    require_refused(filter(sequence(), dir / "out", extra), dir / "out");
+  }
+}
+
+TEST_CASE("filter: --out naming an existing file is refused and the file is kept") {
+  const fs::path dir = scratch("out_is_file");
+  std::ofstream(dir / "out.txt") << "keep";
+  const RunResult r = filter(sequence(), dir / "out.txt");
+  CHECK(r.exit_code == 1);
+  CHECK(read_text(dir / "out.txt") == "keep");
+  CHECK_FALSE(staging_left(dir));
+}
+
+TEST_CASE("filter: every method on a sequence of odd size (33x17) gives finite frames") {
+  const fs::path dir = scratch("odd_filter");
+  REQUIRE(render(dir, {"--scene", "pillars", "--frames", "0-1", "--size", "33x17", "--out", (dir / "in").string()})
+              .exit_code == 0);
+  for (const char* method : {"svgf", "accum", "eaw", "eaw-accum", "none"}) {
+    INFO(method);
+    fs::remove_all(dir / "out");
+    require_finite_frames(filter(dir / "in", dir / "out", {"--method", method}), dir / "out", 2);
+  }
+}
+
+TEST_CASE("filter: frames of zero radiance, albedo and emission give finite frames (no 0/0)") {
+  const fs::path in = changed_sequence("zeros", [](Frame& f, int) {
+    for (const char* layer : {"direct", "indirect", "albedo", "emission"})
+      for (const char* c : {".R", ".G", ".B"})
+        for (float& v : f.float_channel(std::string(layer) + c).data) v = 0.0f;
+  });
+  require_finite_frames(filter(in, in.parent_path() / "out"), in.parent_path() / "out", 3);
+}
+
+// ---- Our own: probe and compare ----
+
+TEST_CASE("probe: an unknown pass, stream, level or frame is refused") {
+  const fs::path dir = scratch("bad_probe");
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--pass", "magic"}, {"--stream", "sideways"}, {"--level", "99"}, {"--level", "-1"}, {"--frame", "9"}}) {
+    INFO(extra[0] << " " << extra[1]);
+    std::vector<std::string> args = {"probe", "--in", sequence().string(), "--pixel", "3,3"};
+    if (extra[0] != "--frame") args.insert(args.end(), {"--frame", "1"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    require_refused(run_rtdr_args(args, dir), dir / "out");
+  }
+}
+
+TEST_CASE("compare: --rel-floor 0 or negative and --max-rel-error -1 are refused") {
+  const fs::path dir = scratch("bad_compare");
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--rel-floor", "0"}, {"--rel-floor", "-1"}, {"--max-rel-error", "-1"}}) {
+    INFO(extra[0] << " " << extra[1]);
+    std::vector<std::string> args = {"compare", "--in", sequence().string(), "--csv", (dir / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    require_refused(run_rtdr_args(args, dir), dir / "out");
+  }
+}
+
+TEST_CASE("eval: a size smaller than the SSIM window is refused before anything is rendered") {
+  const fs::path dir = scratch("eval_small");
+  const RunResult r = run_rtdr_args({"eval", "--scene", "cornell", "--methods", "none", "--frames", "0-1", "--size",
+                                     "16x9", "--cache", (dir / "cache").string(), "--out", (dir / "out").string()}, dir);
+  require_refused(r, dir / "out", "11x11");
+  CHECK(r.err.find("%") == std::string::npos);  // no progress: nothing was rendered
+  CHECK_FALSE(fs::exists(dir / "cache"));
+}
+
+TEST_CASE("bench: an unknown stage or back end is refused") {
+  const fs::path dir = scratch("bad_bench");
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {"--stage", "paint"}, {"--backend", "metal"}, {"--size", "0x0"}}) {
+    INFO(extra[0] << " " << extra[1]);
+    std::vector<std::string> args = {"bench", "--csv", (dir / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    require_refused(run_rtdr_args(args, dir), dir / "out");
+  }
+}

@@ -61,7 +61,7 @@ StagedOutputDir::StagedOutputDir(const std::string& dir) : dir_(dir) {
 
 StagedOutputDir::~StagedOutputDir() {
   std::error_code ec;
-  fs::remove_all(staging_, ec);  // empty after commit(); every staged file after a failure
+  fs::remove_all(staging_, ec);  // gone after commit(); holds every staged file after a failure
 }
 
 std::string StagedOutputDir::file(const std::string& name) const { return (fs::path(staging_) / name).string(); }
@@ -74,6 +74,7 @@ void StagedOutputDir::commit() {
     fs::rename(entry.path(), fs::path(dir_) / entry.path().filename(), ec);
     if (ec) throw Error("cannot move '" + entry.path().filename().string() + "' into --out '" + dir_ + "': " + ec.message());
   }
+  fs::remove(staging_, ec);  // empty now
 }
 
 }  // namespace rtdr

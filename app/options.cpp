@@ -36,9 +36,9 @@ FrameRange parse_frames(const std::string& text) {
                       ? parse_int(text, r.first) && (r.last = r.first, true)
                       : parse_int(std::string_view(text).substr(0, dash), r.first) &&
                             parse_int(std::string_view(text).substr(dash + 1), r.last);
-  if (!ok) throw Error("--frames '" + text + "' is not A-B or A, e.g. 0-9");
-  if (r.first < 0 || r.last < r.first || r.last > kMaxFrameIndex)
-    throw Error("--frames '" + text + "': need 0 <= A <= B <= " + std::to_string(kMaxFrameIndex));
+  if (!ok || r.first < 0 || r.last < r.first || r.last > kMaxFrameIndex)
+    throw Error("--frames '" + text + "' is not A-B or A with 0 <= A <= B <= " + std::to_string(kMaxFrameIndex) +
+                ", e.g. 0-9");
   return r;
 }
 

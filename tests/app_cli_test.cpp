@@ -118,6 +118,14 @@ TEST_CASE("option parsers accept what they document and reject the rest") {
   CHECK(rtdr::parse_frames("2-9").last == 9);
   for (const char* bad : {"", "-", "3-", "-3", "9-2", "a", "1-2-3"})
     CHECK_THROWS_AS(rtdr::parse_frames(bad), rtdr::Error);
+  // The documented bound, kMaxFrameIndex: every loop over a range stays far from INT_MAX.
+  CHECK(rtdr::parse_frames("0-999999").last == 999999);
+  for (const char* bad : {"1000000", "0-1000000", "2147483647", "0-2147483647", "0-2147483648"})
+    CHECK_THROWS_WITH(rtdr::parse_frames(bad), Catch::Contains("999999"));
+  CHECK(rtdr::parse_pixel("640,360", "--pixel").x == 640);
+  CHECK(rtdr::parse_pixel("640,360", "--pixel").y == 360);
+  for (const char* bad : {"5,6junk", "99999999999,0", "5", "5,", ",6", "5;6", " 5,6", "5,6 ", "5.0,6"})
+    CHECK_THROWS_WITH(rtdr::parse_pixel(bad, "--pixel"), Catch::Contains("--pixel"));
 }
 
 TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, on each back end") {

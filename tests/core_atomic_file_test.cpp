@@ -56,7 +56,7 @@ TEST_CASE("StagedOutputDir: without commit() nothing appears, and nothing is cre
   CHECK(files_in(dir).empty());
 }
 
-TEST_CASE("StagedOutputDir: a rerun replaces files of the same name and keeps the others; a failed one keeps all") {
+TEST_CASE("StagedOutputDir: a rerun replaces files of the same name and keeps the others, and a failed one keeps all") {
   const fs::path out = scratch("rerun") / "out";
   fs::create_directories(out);
   rtdr::write_text_file((out / "keep.txt").string(), "old");

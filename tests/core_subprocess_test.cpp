@@ -7,7 +7,7 @@
 
 #include <string>
 
-TEST_CASE("run_program: arguments reach the program verbatim; quotes, ; and $(...) are not interpreted") {
+TEST_CASE("run_program: arguments reach the program verbatim, with quotes, semicolons and $(...) not interpreted") {
   // sh prints its first argument ($1) to stderr: if a shell had read it, the quote would have broken the line
   // or $(...) would have run.
   const std::string hostile = "it's; $(echo injected) `echo too` \"x\" *";

@@ -10,7 +10,12 @@
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 using namespace rtdr;
@@ -357,4 +362,27 @@ TEST_CASE("a missing file or scene name throws one line naming it") {
       CHECK(message.find("no such scene file") != std::string::npos);
     }
   }
+}
+
+TEST_CASE("glTF 2.x only: asset.version must be 2.<minor>, and minVersion at most 2.0") {
+  const std::string cornell = [] {
+    std::ifstream in(std::string(RTDR_SOURCE_DIR) + "/scenes/cornell.gltf");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }();
+  const std::string asset = "\"version\": \"2.0\"";
+  REQUIRE(cornell.find(asset) != std::string::npos);
+  const std::string path = (std::filesystem::temp_directory_path() / ("rtdr_version_" + std::to_string(::getpid()) + ".gltf")).string();
+  auto load_with = [&](const std::string& replacement) {
+    std::string text = cornell;
+    text.replace(text.find(asset), asset.size(), replacement);
+    std::ofstream(path) << text;
+    return load_scene(path);
+  };
+  CHECK(load_with("\"version\": \"2.1\"").instances.size() > 0);
+  for (const char* bad : {"\"version\": \"1.0\"", "\"version\": \"3.0\"", "\"version\": \"2\"", "\"version\": \"2.0b\""})
+    CHECK_THROWS_WITH(load_with(bad), Catch::Contains("asset.version"));
+  CHECK_THROWS_WITH(load_with("\"version\": \"2.1\", \"minVersion\": \"2.1\""), Catch::Contains("minVersion"));
+  std::filesystem::remove(path);
 }

@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <sstream>
 #include <string>
 
@@ -50,4 +52,20 @@ TEST_CASE("validate names the first parameter out of its range, and kernel sizes
   p = {};
   p.atrous_levels = 11;
   CHECK_THROWS_WITH(rtdr::validate(p), Catch::Contains("atrous_levels"));
+}
+
+TEST_CASE("set_param checks a value as a double before casting it: range, whole numbers for ints, NaN") {
+  rtdr::SvgfParams params;
+  CHECK(rtdr::set_param(params, "atrous_levels", 4.0));
+  CHECK(params.atrous_levels == 4);
+  CHECK(rtdr::set_param(params, "alpha", 0.05));
+  CHECK(params.alpha == 0.05f);
+  // 1e30 and NaN cast to int are undefined behaviour; 2.9 would silently become 2.
+  for (const double bad : {2.9, 1e30, -1.0, 11.0, std::nan("")})
+    CHECK_THROWS_WITH(rtdr::set_param(params, "atrous_levels", bad), Catch::Contains("atrous_levels"));
+  for (const double bad : {1.5, -0.1, std::nan(""), double(INFINITY)})
+    CHECK_THROWS_AS(rtdr::set_param(params, "alpha", bad), rtdr::Error);
+  CHECK(params.atrous_levels == 4);  // a refused value changes nothing
+  CHECK(params.alpha == 0.05f);
+  CHECK_FALSE(rtdr::set_param(params, "no_such_parameter", 1.0));
 }

@@ -15,6 +15,7 @@
 #include "scenes/gltf_loader.h"
 
 #include "cli_fixtures.h"
+#include "test_skip.h"
 
 #include <catch2/catch.hpp>
 
@@ -82,11 +83,7 @@ TEST_CASE("rtdr eval: a bad method spec gives one line before anything is render
 }
 
 TEST_CASE("rtdr eval runs svgf on the shader ports beside the golden passes, within the pipeline's bound") {
-  std::string reason;
-  if (!rtdr::VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return;
-  }
+  rtdr::test::skip_without_vulkan();
   const fs::path dir = scratch("ports");
   rtdr::EvalConfig config;  // what the command line below asks for, to find its reference frames in the cache
   config.scene = "pillars";

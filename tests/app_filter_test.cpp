@@ -10,6 +10,7 @@
 #include "trace/render_frame.h"
 
 #include "cli_fixtures.h"
+#include "test_skip.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -111,11 +112,7 @@ TEST_CASE("rtdr filter writes an EXR with color and display and a PNG per frame"
 }
 
 TEST_CASE("rtdr filter --backend vulkan writes what --backend cpu writes, within the pipeline's bound") {
-  std::string reason;
-  if (!rtdr::VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return;
-  }
+  rtdr::test::skip_without_vulkan();
   const fs::path dir = scratch("backend");
   for (const std::string backend : {"cpu", "vulkan"}) {
     const RunResult r = run_rtdr("filter --backend " + backend + " --in " + sequence().string() + " --out " +

@@ -8,6 +8,7 @@
 #include "filters/svgf/svgf_shared.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/vulkan_context.h"
+#include "test_skip.h"
 
 #include <catch2/catch.hpp>
 
@@ -22,19 +23,15 @@
 
 namespace rtdr::gpu_test {
 
-// The device for these tests, with the validation layer; null (after a WARN saying why) when there is none:
-// the calling test then returns, skipped rather than failed. Every test calling it runs four times (GENERATE):
+// The device for these tests, with the validation layer. Where there is none, the calling test case is skipped
+// (tests/test_skip.h): ctest reports it as skipped, not passed. Every test calling it runs four times (GENERATE):
 // with the ports built for texel-buffer inputs and for storage-buffer inputs (core/shader_shared.h), each with
 // fp32 and with fp16 illumination records (filters/svgf/planes_shared.h), so all four builds of every shader are
 // validated on whatever device there is.
 inline std::unique_ptr<VulkanContext> validated_context() {
   const ShaderInputs inputs = GENERATE(ShaderInputs::Texel, ShaderInputs::Storage);
   const IlluminationRecords records = GENERATE(IlluminationRecords::Fp32, IlluminationRecords::Fp16);
-  std::string reason;
-  if (!VulkanContext::available(&reason)) {
-    WARN("SKIPPED: no Vulkan device: " << reason);
-    return nullptr;
-  }
+  test::skip_without_vulkan();
   UNSCOPED_INFO("shader inputs: " << shader_inputs_name(inputs) << " buffers, "
                                   << illumination_records_name(records) << " illumination records");
   return std::make_unique<VulkanContext>(

@@ -63,7 +63,41 @@ void add_channel(Imf::Header& header, Imf::FrameBuffer& buffer, const std::strin
   buffer.insert(name, slice_of(type, plane));
 }
 
-// Everything read_exr checks before reading pixels: the file exists and is a flat (not deep) OpenEXR file.
+// OpenEXR 3.1 believes the size a header attribute declares: a 126-byte file whose header announces a
+// 1.9 GB string makes it allocate and clear 1.9 GB before it finds the file too short (fuzz/exr_reader_fuzz
+// found it). So before OpenEXR reads the header, every attribute must fit in the file. The layout ("The
+// OpenEXR File Layout"): magic number and version, 4 bytes each, then per part its attributes, each
+// name\0 type\0 size (int32, little-endian) value[size], ended by an empty name; in a multi-part file an
+// empty name also follows the last part's header. Other damage (a name without its \0, or longer than the
+// 255 characters OpenEXR allows) is left to OpenEXR.
+void require_attributes_fit(const std::string& path, bool multi_part) {
+  std::error_code ec;
+  const auto file_size = std::streamoff(std::filesystem::file_size(path, ec));
+  std::ifstream in(path, std::ios::binary);
+  if (ec || !in.seekg(8)) return;
+  bool part_ended = false;  // the last attribute list ended; in a multi-part file another may follow
+  for (std::string name, type; std::getline(in, name, '\0');) {
+    if (name.empty()) {
+      if (!multi_part || part_ended) return;  // the end of the (last) header
+      part_ended = true;
+      continue;
+    }
+    part_ended = false;
+    if (name.size() > 255) return;
+    unsigned char size_bytes[4];
+    if (!std::getline(in, type, '\0') || !in.read(reinterpret_cast<char*>(size_bytes), 4)) return;
+    const int32_t size = int32_t(uint32_t(size_bytes[0]) | uint32_t(size_bytes[1]) << 8 |
+                                 uint32_t(size_bytes[2]) << 16 | uint32_t(size_bytes[3]) << 24);
+    const std::streamoff left = file_size - in.tellg();
+    if (size < 0 || size > left)
+      throw Error("cannot read EXR file '" + path + "': header attribute '" + one_line(name) + "' declares " +
+                  std::to_string(size) + " bytes, but only " + std::to_string(left) + " follow (truncated?)");
+    in.seekg(size, std::ios::cur);
+  }
+}
+
+// Everything read_exr checks before OpenEXR opens the file: it exists, it is a flat (not deep) OpenEXR
+// file, and its header's attributes fit in it.
 void require_readable_exr(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error("cannot read EXR file '" + path + "': no such file");
@@ -71,6 +105,7 @@ void require_readable_exr(const std::string& path) {
   if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multi_part))
     throw Error("cannot read EXR file '" + path + "': not an OpenEXR file");
   if (deep) throw Error("cannot read EXR file '" + path + "': deep images are not supported");
+  require_attributes_fit(path, multi_part);
 }
 
 // Reads the pixels of an opened file into a new Frame. Throws rtdr::Error for layouts we do not support;

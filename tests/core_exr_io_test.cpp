@@ -326,3 +326,22 @@ TEST_CASE("require_same_size names both frames") {
   CHECK(message.find("7x5") != std::string::npos);
   CHECK(message.find("5x7") != std::string::npos);
 }
+
+TEST_CASE("read_exr rejects a header attribute larger than the file before OpenEXR allocates it") {
+  // fuzz/exr_reader_fuzz found a 126-byte file whose "capDate" string declares 1979711507 bytes: OpenEXR 3.1
+  // allocated and cleared them (about 2 GB, seconds) before it noticed that the file ends. Here the same
+  // header, cut after the size, with a negative size too (OpenEXR reads it as a signed int).
+  TempDir dir;
+  for (const int32_t size : {int32_t(0x76000013), int32_t(-1)}) {
+    ExrBytes f;
+    f.put(uint32_t(20000630));  // magic number
+    f.put(uint32_t(2));         // version 2, single-part scanline
+    f.attribute("capDate", "string", size);
+    f.put_name("2026:11:23 23:55:18");
+    const std::string path = dir.file("huge_attribute_" + std::to_string(size) + ".exr");
+    write_bytes(path, f.bytes);
+    const std::string message = error_of([&] { rtdr::read_exr(path); });
+    check_one_line_naming(message, path);
+    CHECK(message.find("'capDate' declares " + std::to_string(size) + " bytes") != std::string::npos);
+  }
+}

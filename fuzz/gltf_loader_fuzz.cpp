@@ -15,9 +15,9 @@
 
 namespace {
 
-// Everything the renderer asks of a Scene, at a few times: frame 0, frame 1, and a time past any key.
+// Everything the renderer asks of a Scene, at the times of frames 0 and 1 and at a time past any key.
 void use_scene(const rtdr::Scene& scene) {
-  for (const double t : {0.0, scene.time_of_frame(1), 1e6}) {
+  for (const double t : {scene.time_of_frame(0), scene.time_of_frame(1), 1e6}) {
     const rtdr::ScenePose pose = scene.pose(t);
     for (const rtdr::Instance& instance : scene.instances) {
       const rtdr::Material& m = scene.material_of_mesh(instance.mesh);

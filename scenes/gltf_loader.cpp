@@ -252,10 +252,13 @@ float load_fps(const Source& src) {
   const tinygltf::Model& m = src.model;
   const int s = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (size_t(s) >= m.scenes.size() || !m.scenes[size_t(s)].extras.Has("rtdr_fps")) return 30.0f;
-  const tinygltf::Value& fps = m.scenes[size_t(s)].extras.Get("rtdr_fps");
-  if (!fps.IsNumber() || !(fps.GetNumberAsDouble() > 0.0) || !std::isfinite(fps.GetNumberAsDouble()))
-    src.fail("scene extras rtdr_fps must be a positive number");
-  return float(fps.GetNumberAsDouble());
+  const tinygltf::Value& value = m.scenes[size_t(s)].extras.Get("rtdr_fps");
+  // Checked as the float it becomes: 1e-300 is a positive double but 0 as a float, and frame f's time
+  // f / fps would be NaN (found by fuzz/gltf_loader_fuzz).
+  const float fps = value.IsNumber() ? float(value.GetNumberAsDouble()) : 0.0f;
+  if (!(fps > 0.0f) || !std::isfinite(fps))
+    src.fail("scene extras rtdr_fps must be a positive number (and at most the largest float)");
+  return fps;
 }
 
 // One Instance per (node, primitive) of every node with a mesh, in Scene node order.

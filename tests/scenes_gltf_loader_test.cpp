@@ -11,6 +11,9 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 using namespace rtdr;
@@ -356,5 +359,34 @@ TEST_CASE("a missing file or scene name throws one line naming it") {
       CHECK(message.find(resolve_scene_path(name)) != std::string::npos);
       CHECK(message.find("no such scene file") != std::string::npos);
     }
+  }
+}
+
+TEST_CASE("rtdr_fps is checked as the float it becomes") {
+  // fuzz/gltf_loader_fuzz: rtdr_fps 1e-300 is a positive double but 0 as a float, so frame 0's time was
+  // 0 / 0 = NaN, and sampling a track at NaN read past its last key. 1e39 is beyond the largest float.
+  std::ifstream in(kData + "/anim_test.gltf");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string original = text.str();
+  const std::string key = "\"rtdr_fps\": 24";
+  REQUIRE(original.find(key) != std::string::npos);
+  int count = 0;
+  for (const std::string fps : {"1e-300", "1e39", "-24", "\"24\""}) {
+    std::string modified = original;
+    modified.replace(modified.find(key), key.size(), "\"rtdr_fps\": " + fps);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("rtdr_fps_test_" + std::to_string(count++) + ".gltf")).string();
+    std::ofstream(path) << modified;
+    INFO("rtdr_fps " << fps);
+    try {
+      load_scene(path);
+      FAIL("no error");
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      CHECK(message.find(path) != std::string::npos);
+      CHECK(message.find("rtdr_fps must be a positive number") != std::string::npos);
+    }
+    std::filesystem::remove(path);
   }
 }

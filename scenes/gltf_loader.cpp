@@ -237,13 +237,15 @@ Camera load_camera(const Source& src, const Scene& scene, const std::vector<int>
     const tinygltf::Camera& gc = src.model.cameras[size_t(c)];
     const std::string what = "camera " + label(gc.name, size_t(c));
     if (gc.type != "perspective") src.fail(what + " is " + gc.type + "; only perspective cameras are supported");
-    const tinygltf::PerspectiveCamera& p = gc.perspective;
-    if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi))
-      src.fail(what + " yfov " + std::to_string(p.yfov) + " is not in (0, pi)");
-    if (!(p.znear > 0.0 && std::isfinite(p.znear))) src.fail(what + " znear must be positive");
-    if (!(p.zfar == 0.0 || (p.zfar > p.znear && std::isfinite(p.zfar))))
-      src.fail(what + " zfar must be 0 (infinite) or beyond znear");
-    return Camera{int(i), float(p.yfov), float(p.znear), float(p.zfar)};
+    // Checked as the floats they become: a znear of 1e-300 is a positive double but 0 as a float.
+    const float yfov = float(gc.perspective.yfov), znear = float(gc.perspective.znear);
+    const float zfar = float(gc.perspective.zfar);
+    if (!(yfov > 0.0f && yfov < std::numbers::pi_v<float>))
+      src.fail(what + " yfov " + std::to_string(gc.perspective.yfov) + " is not in (0, pi)");
+    if (!(znear > 0.0f && std::isfinite(znear))) src.fail(what + " znear must be positive (as a float)");
+    if (!(zfar == 0.0f || (zfar > znear && std::isfinite(zfar))))
+      src.fail(what + " zfar must be 0 (infinite) or beyond znear (as floats)");
+    return Camera{int(i), yfov, znear, zfar};
   }
   src.fail("has no camera (add a node with a perspective camera)");
 }

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace rtdr {
 namespace {
@@ -63,7 +64,82 @@ void add_channel(Imf::Header& header, Imf::FrameBuffer& buffer, const std::strin
   buffer.insert(name, slice_of(type, plane));
 }
 
-// Everything read_exr checks before reading pixels: the file exists and is a flat (not deep) OpenEXR file.
+// The bytes OpenEXR 3.1 reads for a value of a fixed-size attribute type, whatever size the file declares
+// ("The OpenEXR File Layout", predefined attribute types); -1 for the other types.
+int fixed_value_size(const std::string& type) {
+  static const std::map<std::string, int> sizes = {
+      {"box2f", 16},  {"box2i", 16},   {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+      {"double", 8},  {"envmap", 1},   {"float", 4},           {"int", 4},         {"keycode", 28},
+      {"lineOrder", 1}, {"m33d", 72},  {"m33f", 36},           {"m44d", 128},      {"m44f", 64},
+      {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},       {"v2d", 16},        {"v2f", 8},
+      {"v2i", 8},     {"v3d", 24},     {"v3f", 12},            {"v3i", 12}};
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? -1 : it->second;
+}
+
+// The bytes OpenEXR 3.1 reads for a chlist value: channels (name\0, then 16 bytes) up to an empty name,
+// whatever size the file declares; -1 when the list does not end inside `value`.
+int64_t channel_list_size(const std::string& value) {
+  size_t at = 0;
+  while (at < value.size()) {
+    const size_t name_end = value.find('\0', at);
+    if (name_end == std::string::npos) return -1;
+    if (name_end == at) return int64_t(at) + 1;  // the empty name that ends the list
+    at = name_end + 1 + 16;
+  }
+  return -1;
+}
+
+// OpenEXR 3.1 believes the size a header attribute declares: a 126-byte file whose header announces a 1.9 GB
+// string makes it allocate and clear 1.9 GB before it finds the file too short (fuzz/exr_reader_fuzz found
+// it). Only some types read the declared size, though: a chlist is read up to its end marker, a box2i is 16
+// bytes whatever the size says, and OpenEXR goes on reading the next attribute from where the value ended.
+// So before OpenEXR reads the header, every attribute must declare exactly the bytes OpenEXR reads for it,
+// and they must be in the file; then our walk through the header and OpenEXR's agree on every size.
+// The layout ("The OpenEXR File Layout"): magic number and version, 4 bytes each, then per part its
+// attributes, each name\0 type\0 size (int32, little-endian) value[size], ended by an empty name; in a
+// multi-part file an empty name also follows the last part's header. Other damage (a name without its \0
+// or longer than the 255 characters OpenEXR allows) is left to OpenEXR, which reports it.
+void require_consistent_header(const std::string& path, bool multi_part) {
+  std::error_code ec;
+  const auto file_size = std::streamoff(std::filesystem::file_size(path, ec));
+  std::ifstream in(path, std::ios::binary);
+  if (ec || !in.seekg(8)) return;
+  bool part_ended = false;  // the last attribute list ended; in a multi-part file another may follow
+  for (std::string name, type; std::getline(in, name, '\0');) {
+    if (name.empty()) {
+      if (!multi_part || part_ended) return;  // the end of the (last) header
+      part_ended = true;
+      continue;
+    }
+    part_ended = false;
+    unsigned char size_bytes[4];
+    if (name.size() > 255 || !std::getline(in, type, '\0') || type.size() > 255 ||
+        !in.read(reinterpret_cast<char*>(size_bytes), 4))
+      return;
+    const int32_t size = int32_t(uint32_t(size_bytes[0]) | uint32_t(size_bytes[1]) << 8 |
+                                 uint32_t(size_bytes[2]) << 16 | uint32_t(size_bytes[3]) << 24);
+    const std::string what = "cannot read EXR file '" + path + "': header attribute '" + one_line(name) + "' ";
+    const std::streamoff left = file_size - in.tellg();
+    if (size < 0 || size > left)
+      throw Error(what + "declares " + std::to_string(size) + " bytes, but only " + std::to_string(left) +
+                  " follow (truncated?)");
+
+    // What OpenEXR will read: a fixed size, a channel list up to its end, whole floats, or the declared size.
+    std::string value(size_t(size), '\0');
+    if (!in.read(value.data(), size)) return;
+    int64_t read = size;
+    if (fixed_value_size(type) >= 0) read = fixed_value_size(type);
+    if (type == "chlist") read = channel_list_size(value);
+    if (type == "floatvector") read = size - size % 4;
+    if (read != size)
+      throw Error(what + "of type '" + one_line(type) + "' declares " + std::to_string(size) +
+                  " bytes but its value takes " + (read < 0 ? "more" : std::to_string(read)));
+  }
+}
+
+// Everything read_exr checks before OpenEXR opens the file: it exists, it is a flat (not deep) OpenEXR
+// file, and every header attribute declares the size OpenEXR reads for it.
 void require_readable_exr(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error("cannot read EXR file '" + path + "': no such file");
@@ -71,6 +147,7 @@ void require_readable_exr(const std::string& path) {
   if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multi_part))
     throw Error("cannot read EXR file '" + path + "': not an OpenEXR file");
   if (deep) throw Error("cannot read EXR file '" + path + "': deep images are not supported");
+  require_consistent_header(path, multi_part);
 }
 
 // Reads the pixels of an opened file into a new Frame. Throws rtdr::Error for layouts we do not support;

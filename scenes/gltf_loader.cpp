@@ -270,7 +270,8 @@ float load_fps(const Source& src) {
   const int s = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (size_t(s) >= m.scenes.size() || !m.scenes[size_t(s)].extras.Has("rtdr_fps")) return 30.0f;
   const tinygltf::Value& value = m.scenes[size_t(s)].extras.Get("rtdr_fps");
-  // Checked as the float the scene keeps: 1e-300 frames per second is positive as a double and 0 as a float.
+  // Checked as the float the scene keeps: 1e-300 frames per second is positive as a double and 0 as a float,
+  // and frame f's time f / fps would be NaN (found by fuzz/gltf_loader_fuzz too).
   const float fps = value.IsNumber() ? float(value.GetNumberAsDouble()) : 0.0f;
   if (!(fps > 0.0f && std::isnormal(fps))) src.fail("scene extras rtdr_fps must be a positive float");
   return fps;

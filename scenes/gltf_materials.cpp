@@ -55,12 +55,14 @@ Texture decode_image(const Source& src, int image_index) {
   return texture;
 }
 
-// A number from the file that must be finite and within [lo, hi].
+// A number from the file that must be within [lo, hi] and finite as the float it is stored as (1e39 is a
+// finite double but an infinite float).
 float checked(const Source& src, double value, double lo, double hi, const std::string& what) {
-  if (!std::isfinite(value) || value < lo || value > hi)
+  const float f = float(value);
+  if (!std::isfinite(f) || value < lo || value > hi)
     src.fail(what + " is " + std::to_string(value) + ", outside [" + std::to_string(lo) + ", " + std::to_string(hi) +
-             "]");
-  return float(value);
+             "] or beyond the largest float");
+  return f;
 }
 
 // Material extras {"rtdr_emissive_strength": {"times": [...], "values": [...], "interpolation": ...}}.

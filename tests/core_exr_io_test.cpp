@@ -326,3 +326,47 @@ TEST_CASE("require_same_size names both frames") {
   CHECK(message.find("7x5") != std::string::npos);
   CHECK(message.find("5x7") != std::string::npos);
 }
+
+TEST_CASE("read_exr rejects header attributes whose size is not what OpenEXR reads, before OpenEXR reads them") {
+  // fuzz/exr_reader_fuzz found files whose header makes OpenEXR 3.1 allocate and clear about 2 GB (seconds)
+  // before it notices that the file ends: a string declaring 1979711507 bytes, right after the version or
+  // behind a chlist that declares more bytes than its channel list holds (OpenEXR reads the list up to its
+  // end marker and takes the next bytes for the next attribute). Each header here is cut after the
+  // attribute that is wrong.
+  TempDir dir;
+  auto check = [&](const std::string& name, const ExrBytes& f, const std::string& expected) {
+    const std::string path = dir.file(name + ".exr");
+    write_bytes(path, f.bytes);
+    const std::string message = error_of([&] { rtdr::read_exr(path); });
+    check_one_line_naming(message, path);
+    INFO("message: " << message);
+    CHECK(message.find(expected) != std::string::npos);
+  };
+  auto header = [] {
+    ExrBytes f;
+    f.put(uint32_t(20000630));  // magic number
+    f.put(uint32_t(2));         // version 2, single-part scanline
+    return f;
+  };
+
+  for (const int32_t size : {int32_t(0x76000013), int32_t(-1)}) {  // OpenEXR reads the size as a signed int
+    ExrBytes f = header();
+    f.attribute("capDate", "string", size);
+    f.put_name("2026:11:23 23:55:18");
+    check("string_" + std::to_string(size), f, "'capDate' declares " + std::to_string(size) + " bytes");
+  }
+  {
+    ExrBytes f = header();
+    f.attribute("channels", "chlist", 40);  // an empty list (1 byte), then the bytes of the next attribute
+    f.bytes.push_back(0);
+    f.attribute("capDate", "string", int32_t(0x76000013));
+    f.bytes.resize(f.bytes.size() + 40);
+    check("chlist", f, "'channels' of type 'chlist' declares 40 bytes but its value takes 1");
+  }
+  {
+    ExrBytes f = header();
+    f.attribute("dataWindow", "box2i", 17);  // a box2i is four ints, 16 bytes
+    f.bytes.resize(f.bytes.size() + 40);
+    check("box2i", f, "'dataWindow' of type 'box2i' declares 17 bytes but its value takes 16");
+  }
+}

@@ -12,11 +12,13 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace rtdr;
 
@@ -385,4 +387,42 @@ TEST_CASE("glTF 2.x only: asset.version must be 2.<minor>, and minVersion at mos
     CHECK_THROWS_WITH(load_with(bad), Catch::Contains("asset.version"));
   CHECK_THROWS_WITH(load_with("\"version\": \"2.1\", \"minVersion\": \"2.1\""), Catch::Contains("minVersion"));
   std::filesystem::remove(path);
+}
+
+TEST_CASE("numbers are checked as the floats they become") {
+  // fuzz/gltf_loader_fuzz: rtdr_fps 1e-300 is a positive double but 0 as a float, so frame 0's time was
+  // 0 / 0 = NaN, and sampling a track at NaN read past its last key. The same holds for znear, and 1e39 is a
+  // finite double but an infinite float. Each case edits one number of anim_test.gltf.
+  std::ifstream in(kData + "/anim_test.gltf");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string original = text.str();
+  const std::vector<std::array<std::string, 3>> cases = {
+      // {text in anim_test.gltf, replacement, expected problem}
+      {"\"rtdr_fps\": 24", "\"rtdr_fps\": 1e-300", "rtdr_fps must be a positive"},
+      {"\"rtdr_fps\": 24", "\"rtdr_fps\": 1e39", "rtdr_fps must be a positive"},
+      {"\"rtdr_fps\": 24", "\"rtdr_fps\": \"24\"", "rtdr_fps must be a positive"},
+      {"\"znear\": 0.1", "\"znear\": 1e-300", "znear"},
+      {"\"zfar\": 100.0", "\"zfar\": 1e39", "zfar must be 0 (infinite) or beyond znear"},
+      {"\"emissiveStrength\": 3.0", "\"emissiveStrength\": 1e39", "emissiveStrength is"},
+  };
+  int count = 0;
+  for (const auto& [key, replacement, problem] : cases) {
+    std::string modified = original;
+    REQUIRE(modified.find(key) != std::string::npos);
+    modified.replace(modified.find(key), key.size(), replacement);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("rtdr_float_test_" + std::to_string(count++) + ".gltf")).string();
+    std::ofstream(path) << modified;
+    INFO(replacement);
+    try {
+      load_scene(path);
+      FAIL("no error");
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      CHECK(message.find(path) != std::string::npos);
+      CHECK(message.find(problem) != std::string::npos);
+    }
+    std::filesystem::remove(path);
+  }
 }

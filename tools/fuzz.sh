@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses of fuzz/ (fuzz/README.md) with clang into build-fuzz/ and runs each one
+# for SECONDS seconds (default 60, what CI runs). Exits non-zero when any harness finds something: a crash,
+# a sanitizer report, a timeout, an out-of-memory, or an exception that is not rtdr::Error.
+#
+#   bash tools/fuzz.sh [SECONDS]
+#
+# Each harness works on build-fuzz/corpus/<harness>/, which starts as a copy of fuzz/corpus/<harness>/ and
+# keeps what earlier runs found (delete it to start over); the seeds in git are never written to. Inputs
+# that fail are saved in build-fuzz/findings/<harness>/, each run's output in build-fuzz/logs/<harness>.log.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+duration="${1:-60}"
+[[ "$duration" =~ ^[1-9][0-9]*$ ]] || { echo "usage: bash tools/fuzz.sh [SECONDS]" >&2; exit 2; }
+
+# The project's own dependencies (and build/: an up-to-date check once it is built), then clang with its
+# runtime libraries (compiler-rt: libFuzzer, AddressSanitizer, UndefinedBehaviorSanitizer), which Debian
+# packages separately from the compiler.
+bash tools/setup.sh
+PACKAGES=(clang libclang-rt-dev)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "fuzz: installing ${missing[*]}"
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Only the harnesses and the libraries they link; no tests (RTDR_FUZZ in CMakeLists.txt says what is
+# instrumented). RelWithDebInfo: -O2 for speed, -g for the stack traces in a report.
+[ -f build-fuzz/build.ninja ] ||
+  CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRTDR_FUZZ=ON \
+    -DRTDR_BUILD_TESTS=OFF
+cmake --build build-fuzz --target rtdr_fuzz
+
+# Sanitizer reports with stack traces; UBSan stops at the first report (also set at compile time).
+export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=0:detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+
+summary=()
+failed=0
+for harness in gltf_loader_fuzz exr_reader_fuzz cli_args_fuzz; do
+  corpus="build-fuzz/corpus/$harness" findings="build-fuzz/findings/$harness" log="build-fuzz/logs/$harness.log"
+  mkdir -p "$corpus" "$findings" build-fuzz/logs
+  cp fuzz/corpus/"$harness"/* "$corpus"/
+  echo "fuzz: $harness for $duration s (log: $log)"
+  # -timeout: one input taking 10 s is a hang. -rss_limit_mb: more memory than this is a finding too.
+  status=0
+  "build-fuzz/fuzz/$harness" "$corpus" -dict="fuzz/$harness.dict" -max_total_time="$duration" -timeout=10 \
+    -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 </dev/null >"$log" 2>&1 || status=$?
+
+  # libFuzzer's last lines: "Done N runs in S second(s)", and the last status line "#N ... cov: C ft: F".
+  runs=$(sed -n 's/^Done \([0-9]*\) runs in \([0-9]*\) second.*/\1 runs in \2 s/p' "$log" | tail -1)
+  coverage=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1 || true)
+  if ((status == 0)); then
+    files=$(find "$corpus" -type f | wc -l)
+    summary+=("fuzz: $harness: ${runs:-? runs}, ${coverage:-no coverage line}, $files corpus files: nothing found")
+  else
+    failed=1
+    found="fuzz: $harness: FOUND SOMETHING (exit $status) after ${runs:-an unknown number of runs}"
+    summary+=("$found; input(s) in $findings/, log $log")
+    echo "----- the end of $log -----"
+    tail -n 60 "$log"
+    echo "----- reproduce: build-fuzz/fuzz/$harness $findings/<file> -----"
+  fi
+done
+
+printf '%s\n' "${summary[@]}"
+exit "$failed"

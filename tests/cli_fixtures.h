@@ -1,6 +1,8 @@
 // Running the real `rtdr` binary (RTDR_EXE) from tests, as a user would, in scratch folders.
 #pragma once
 
+#include <catch2/catch.hpp>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,7 +44,12 @@ inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const st
   const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(RTDR_EXE) + " " + args + " >" +
                           out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  const RunResult result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  // In the sanitizer build (tools/sanitize.sh) rtdr is sanitized too: a report in its stderr fails the test,
+  // even a test that expects rtdr to fail, and shows the report.
+  if (result.err.find("Sanitizer") != std::string::npos || result.err.find("runtime error:") != std::string::npos)
+    FAIL_CHECK("sanitizer report from rtdr " << args << ":\n" << result.err);
+  return result;
 }
 
 // The cells of one line of a CSV file the command wrote (no quoting: its cells hold no commas); an empty last

@@ -1,6 +1,8 @@
 // Running the real `rtdr` binary (RTDR_EXE) from tests, as a user would, in scratch folders.
 #pragma once
 
+#include <catch2/catch.hpp>
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -38,13 +40,21 @@ inline std::string read_text(const fs::path& p) {
   return ss.str();
 }
 
+// In the sanitizer build (tools/sanitize.sh) rtdr is sanitized too: a report in its stderr fails the test,
+// even a test that expects rtdr to fail, and shows the report.
+inline RunResult checked_for_sanitizers(RunResult result, const std::string& args) {
+  if (result.err.find("Sanitizer") != std::string::npos || result.err.find("runtime error:") != std::string::npos)
+    FAIL_CHECK("sanitizer report from rtdr " << args << ":\n" << result.err);
+  return result;
+}
+
 // Runs `rtdr args`, its stdout and stderr captured in files of `dir`; `env` ("NAME=value ...") is set for it alone.
 inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const std::string& env = "") {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
   const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(RTDR_EXE) + " " + args + " >" +
                           out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  return checked_for_sanitizers({WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)}, args);
 }
 
 // Runs `rtdr` with `args` as its argument vector, through no shell: a quote, a space or "$(...)" in an
@@ -73,7 +83,9 @@ inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::p
   if (spawned != 0) return {-1, "", "cannot start " RTDR_EXE};
   int status = 0;
   waitpid(pid, &status, 0);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  std::string joined;
+  for (const std::string& a : args) joined += (joined.empty() ? "" : " ") + a;
+  return checked_for_sanitizers({WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)}, joined);
 }
 
 // The cells of one line of a CSV file the command wrote (no quoting: its cells hold no commas); an empty last

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -70,9 +71,9 @@ Frame make_test_frame(int width, int height) {
       instance.at(x, y) = uint32_t(x * 1000003 + y * 7919);
     }
   }
-  depth.at(0, 0) = std::numeric_limits<float>::denorm_min();
-  depth.at(1, 0) = -0.0f;
-  depth.at(2, 0) = std::numeric_limits<float>::max();
+  // The awkward depths go along the first row, as many as fit: a 1x1 frame has room for the first only.
+  const float awkward[] = {std::numeric_limits<float>::denorm_min(), -0.0f, std::numeric_limits<float>::max()};
+  for (int x = 0; x < std::min(width, 3); ++x) depth.at(x, 0) = awkward[x];
   instance.at(0, 0) = kInvalidId;                       // "no surface"
   instance.at(width - 1, height - 1) = 0xFFFFFFFEu;     // largest valid id
   return frame;

@@ -150,6 +150,25 @@ void require_readable_exr(const std::string& path) {
   require_consistent_header(path, multi_part);
 }
 
+// An uncompressed file stores every pixel as it is, so it cannot be smaller than its pixels. OpenEXR 3.1 does
+// not check: a chunk shorter than its scanline leaves the rest of its buffer as it was, and a 1160-byte file
+// was read as a 4194306x2 frame of 20 channels, 1 GB of whatever that memory held, in 7 s (found by
+// fuzz/exr_reader_fuzz). Compressed chunks are checked by their decompressors.
+void require_uncompressed_pixels_in_file(const std::string& path, const Imf::Header& header) {
+  if (header.compression() != Imf::NO_COMPRESSION) return;
+  const Imath::Box2i window = header.dataWindow();
+  uint64_t row_bytes = 0;  // one row of every channel: at most 2^31 * 4 * channels, no overflow
+  for (auto channel = header.channels().begin(); channel != header.channels().end(); ++channel)
+    row_bytes += uint64_t(window.max.x - window.min.x + 1) * (channel.channel().type == Imf::HALF ? 2 : 4);
+  const uint64_t rows = uint64_t(window.max.y - window.min.y + 1);
+  std::error_code ec;
+  const uint64_t file_size = std::filesystem::file_size(path, ec);
+  if (!ec && row_bytes > 0 && rows > file_size / row_bytes)
+    throw Error("cannot read EXR file '" + path + "': it is uncompressed but its " + std::to_string(file_size) +
+                " bytes cannot hold its " + std::to_string(rows) + " rows of " + std::to_string(row_bytes) +
+                " bytes (truncated or damaged)");
+}
+
 // Reads the pixels of an opened file into a new Frame. Throws rtdr::Error for layouts we do not support;
 // OpenEXR's own exceptions pass through to read_exr.
 Frame read_pixels(const std::string& path, Imf::InputFile& file) {
@@ -161,6 +180,7 @@ Frame read_pixels(const std::string& path, Imf::InputFile& file) {
                 ", " + std::to_string(window.min.y) + "), expected (0, 0)");
   // A file whose writer was interrupted has chunks missing; OpenEXR would fill them without complaint.
   if (!file.isComplete()) throw Error("cannot read EXR file '" + path + "': the file is incomplete (truncated?)");
+  require_uncompressed_pixels_in_file(path, file.header());
 
   Frame frame(window.max.x + 1, window.max.y + 1);
   frame.source = path;

@@ -371,3 +371,23 @@ TEST_CASE("read_exr rejects header attributes whose size is not what OpenEXR rea
     check("box2i", f, "'dataWindow' of type 'box2i' declares 17 bytes but its value takes 16");
   }
 }
+
+TEST_CASE("read_exr rejects an uncompressed file too small for its pixels") {
+  // fuzz/exr_reader_fuzz found a 1160-byte uncompressed file whose data window says 4194306x2: OpenEXR 3.1
+  // read it without complaint, the rows it did not find filled with whatever its buffers held. Here a
+  // hand-made 2x2 file whose data window is widened to 100000x2 after it was written.
+  TempDir dir;
+  std::vector<uint8_t> bytes = hand_made_exr(0, 0, 2, 2, {{"Y", 2, {1, 2, 3, 4}}});
+  const std::string key = "dataWindow";
+  const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+  REQUIRE(at != bytes.end());
+  // name\0 "box2i"\0 size(4), then min.x, min.y, max.x: max.x is 28 bytes after the name starts.
+  const int32_t max_x = 99999;
+  std::memcpy(&*(at + std::ptrdiff_t(key.size() + 1 + 6 + 4 + 8)), &max_x, sizeof max_x);
+  const std::string path = dir.file("wide.exr");
+  write_bytes(path, bytes);
+  const std::string message = error_of([&] { rtdr::read_exr(path); });
+  check_one_line_naming(message, path);
+  CHECK(message.find("uncompressed") != std::string::npos);
+  CHECK(message.find("rows of 400000 bytes") != std::string::npos);
+}

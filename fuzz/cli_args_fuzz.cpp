@@ -8,12 +8,14 @@
 //
 // Bad arguments must end in CLI::ParseError (CLI11 prints it as one line) or rtdr::Error. A finding is
 // anything else: a crash, a sanitizer report, a hang, another exception escaping, or a check that passes
-// a value it promises to reject (a --size outside [1, kMaxImageSize], a --frames range with A > B).
+// a value it promises to reject (a --size outside [1, kMaxImageSize], a --frames range with A > B or beyond
+// kMaxFrameIndex).
 #include "fuzz/harness.h"
 
 #include "app/backend.h"
 #include "app/cli.h"
 #include "core/error.h"
+#include "core/frame.h"  // kMaxFrameIndex
 #include "eval/experiment.h"
 #include "filters/method.h"
 #include "raster/visibility.h"  // kMaxImageSize
@@ -82,7 +84,8 @@ void check_values(const CLI::App* sub) {
   }
   if (!value(sub, "--frames").empty()) {
     const rtdr::FrameRange r = rtdr::parse_frames(value(sub, "--frames"));
-    if (r.first < 0 || r.last < r.first) finding("parse_frames accepted '" + value(sub, "--frames") + "'");
+    if (r.first < 0 || r.last < r.first || r.last > rtdr::kMaxFrameIndex)
+      finding("parse_frames accepted '" + value(sub, "--frames") + "'");
   }
   if (has(sub, "--alpha")) rtdr::validate(svgf_params(sub));  // the SVGF flags come as one group
   if (has(sub, "--method")) rtdr::make_method(value(sub, "--method"), svgf_params(sub));

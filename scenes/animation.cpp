@@ -7,10 +7,12 @@ namespace rtdr {
 
 KeySpan find_key_span(const std::vector<float>& times, double t) {
   const int n = int(times.size());
-  if (n == 0 || t < times.front()) return {-1, 0.0f};
+  // "!(t >= first)" rather than "t < first": a NaN time holds the first key instead of reading past the last.
+  if (n == 0 || !(t >= times.front())) return {-1, 0.0f};
   if (t >= times.back()) return {n - 1, 0.0f};
-  // First key strictly after t; the span starts one before it.
-  const int k1 = int(std::upper_bound(times.begin(), times.end(), float(t)) - times.begin());
+  // First key strictly after t; the span starts one before it. A t just below the last key can round up to
+  // it as a float, where upper_bound finds no key after it: the span is then the last one.
+  const int k1 = std::min(n - 1, int(std::upper_bound(times.begin(), times.end(), float(t)) - times.begin()));
   const int k0 = k1 - 1;
   const double u = (t - times[k0]) / double(times[k1] - times[k0]);
   return {k0, float(std::clamp(u, 0.0, 1.0))};

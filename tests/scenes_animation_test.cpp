@@ -159,3 +159,14 @@ TEST_CASE("pillars: the parent moves left to right, carrying the eleven pillars"
     CHECK(middle[3].z == Approx(-1.0f).margin(1e-5));
   }
 }
+
+TEST_CASE("find_key_span stays inside the track for a NaN time and for a time that rounds up to the last key") {
+  const std::vector<float> times = {0.0f, 1.0f, 2.0f};
+  CHECK(find_key_span(times, std::nan("")).k == -1);  // holds the first key (it read times[3] before)
+  // Just below 2 as a double, exactly 2 as a float: upper_bound finds no key after it.
+  const double below_last = std::nextafter(2.0, 0.0);
+  REQUIRE(float(below_last) == 2.0f);
+  const KeySpan s = find_key_span(times, below_last);
+  CHECK(s.k == 1);
+  CHECK(s.u == 1.0f);
+}

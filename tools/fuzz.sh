@@ -19,17 +19,7 @@ duration="${1:-60}"
 # packages separately from the compiler.
 bash tools/setup.sh
 PACKAGES=(clang libclang-rt-dev)
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  echo "fuzz: installing ${missing[*]}"
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+bash tools/install_missing.sh fuzz "${PACKAGES[@]}"
 
 # Only the harnesses and the libraries they link; no tests (RTDR_FUZZ in CMakeLists.txt says what is
 # instrumented). RelWithDebInfo: -O2 for speed, -g for the stack traces in a report.

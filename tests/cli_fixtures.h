@@ -8,7 +8,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -48,15 +47,6 @@ inline RunResult checked_for_sanitizers(RunResult result, const std::string& arg
   return result;
 }
 
-// Runs `rtdr args`, its stdout and stderr captured in files of `dir`; `env` ("NAME=value ...") is set for it alone.
-inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const std::string& env = "") {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(RTDR_EXE) + " " + args + " >" +
-                          out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return checked_for_sanitizers({WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)}, args);
-}
-
 // Runs `rtdr` with `args` as its argument vector, through no shell: a quote, a space or "$(...)" in an
 // argument reaches rtdr as it is. stdout and stderr are captured in files of `dir`; `env` entries
 // ("NAME=value") are added to its environment.
@@ -86,6 +76,20 @@ inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::p
   std::string joined;
   for (const std::string& a : args) joined += (joined.empty() ? "" : " ") + a;
   return checked_for_sanitizers({WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)}, joined);
+}
+
+// The whitespace-separated words of `text` (no quoting: for the tests' own command lines, whose paths hold no
+// spaces).
+inline std::vector<std::string> words(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// Runs `rtdr args`, `args` split at whitespace (no shell reads it); `env` ("NAME=value ...") is set for it alone.
+inline RunResult run_rtdr(const std::string& args, const fs::path& dir, const std::string& env = "") {
+  return run_rtdr_args(words(args), dir, words(env));
 }
 
 // The cells of one line of a CSV file the command wrote (no quoting: its cells hold no commas); an empty last

@@ -1,5 +1,5 @@
 // libFuzzer harness for the EXR frame reader (core/exr_io.h) and the checks a filter runs on what it reads
-// (app/sequence.h read_filter_input: finite layers, one size for the whole sequence). Each input is one
+// (app/sequence.h read_filter_input: every channel a method reads present, of its type and finite). Each input is one
 // .exr file; the seeds (fuzz/corpus/exr_reader_fuzz/) are 2x2 frames written by fuzz/make_seeds.py.
 //
 // read_exr promises a one-line rtdr::Error for every bad file. A finding is anything else: a crash, a
@@ -10,6 +10,8 @@
 
 #include "app/sequence.h"
 #include "core/error.h"
+#include "filters/method.h"
+#include "filters/svgf/svgf.h"
 #include "core/exr_io.h"
 
 #include <cstdio>
@@ -49,9 +51,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     // The reader alone: a frame that reads must survive a round trip, whatever its layers hold.
     check_round_trip(rtdr::read_exr(path), output.path());
-    // A filter's view of it: every layer a method reads present and finite.
+    // A filter's view of it: every channel a method reads present, of its type and finite. EAW's inputs are
+    // SVGF's plus `position`: every channel any method reads (filters/svgf/svgf.h svgf_input_channels).
+    static const rtdr::InputChannels channels = rtdr::svgf_input_channels(rtdr::method_options("eaw"));
     rtdr::SequenceShape shape;
-    rtdr::read_filter_input(path, shape);
+    rtdr::read_filter_input(path, shape, channels);
   } catch (const rtdr::Error& e) {  // the promised outcome for a bad file
     rtdr::fuzz::expected_error(e);
   }

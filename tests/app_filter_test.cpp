@@ -75,16 +75,6 @@ std::set<std::string> dump_channels() {
   return names;
 }
 
-// A copy of `f` without channel `drop`.
-rtdr::Frame without(const rtdr::Frame& f, const std::string& drop) {
-  rtdr::Frame out(f.width(), f.height());
-  for (const auto& [name, plane] : f.float_channels())
-    if (name != drop) out.add_float(name).data = plane.data;
-  for (const auto& [name, plane] : f.uint_channels())
-    if (name != drop) out.add_uint(name).data = plane.data;
-  return out;
-}
-
 const std::set<std::string> kOutputChannels = {"color.R", "color.G", "color.B", "display.R", "display.G", "display.B"};
 
 }  // namespace

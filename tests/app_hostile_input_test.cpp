@@ -56,16 +56,6 @@ fs::path changed_sequence(const std::string& name, const std::function<void(Fram
   return in;
 }
 
-// A copy of `f` without channel `drop`.
-Frame without(const Frame& f, const std::string& drop) {
-  Frame out(f.width(), f.height());
-  for (const auto& [name, plane] : f.float_channels())
-    if (name != drop) out.add_float(name).data = plane.data;
-  for (const auto& [name, plane] : f.uint_channels())
-    if (name != drop) out.add_uint(name).data = plane.data;
-  return out;
-}
-
 // A shipped scene's glTF, as JSON to edit, and a place to write the edited copy.
 json scene_json(const std::string& name) {
   return json::parse(read_text(fs::path(RTDR_SOURCE_DIR) / "scenes" / (name + ".gltf")));

@@ -1,6 +1,8 @@
 // Running the real `rtdr` binary (RTDR_EXE) from tests, as a user would, in scratch folders.
 #pragma once
 
+#include "core/frame.h"
+
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -108,6 +110,16 @@ inline std::set<std::string> files_in(const fs::path& dir) {
   if (fs::exists(dir))
     for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
   return names;
+}
+
+// A copy of frame `f` without channel `drop`: the input of a test that removes one layer.
+inline Frame without(const Frame& f, const std::string& drop) {
+  Frame out(f.width(), f.height());
+  for (const auto& [name, plane] : f.float_channels())
+    if (name != drop) out.add_float(name).data = plane.data;
+  for (const auto& [name, plane] : f.uint_channels())
+    if (name != drop) out.add_uint(name).data = plane.data;
+  return out;
 }
 
 }  // namespace rtdr::cli

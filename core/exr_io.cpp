@@ -17,6 +17,7 @@
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfTestFile.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cctype>
 #include <cerrno>
@@ -90,6 +91,37 @@ int64_t channel_list_size(const std::string& value) {
   return -1;
 }
 
+// The attributes of one part's header that bound what OpenEXR allocates when it opens the part: the raw
+// values of dataWindow (box2i) and tiles (tiledesc), empty when the part has none.
+struct PartShape {
+  std::string window, tiles;
+};
+
+// A little-endian 32-bit integer at byte `at` of an attribute value.
+uint32_t le32(const std::string& value, size_t at) {
+  uint32_t v = 0;
+  for (size_t i = 0; i < 4; ++i) v |= uint32_t(uint8_t(value[at + i])) << (8 * i);
+  return v;
+}
+
+// OpenEXR 3.1 allocates a tile's worth of buffers for every thread when it opens a tiled file, before it
+// reads a pixel: a 1 KB file whose tiles are declared 2^15 pixels wide made it allocate 2.2 GB
+// (fuzz/exr_reader_fuzz found it). A tile wider or taller than the image serves no purpose, so we accept
+// tiles up to the data window's size in each direction, or up to 256 pixels (writers use 64 to 256 tiles
+// for small images too); what OpenEXR allocates for them is then of the order of the frame itself.
+void require_tiles_fit(const std::string& path, const PartShape& part) {
+  if (part.tiles.size() != 9 || part.window.size() != 16) return;  // scanline, or OpenEXR reports the damage
+  const uint32_t tile_width = le32(part.tiles, 0), tile_height = le32(part.tiles, 4);
+  // The window's sides in 64 bits: max - min + 1 of two int32s can exceed 2^31.
+  const int64_t width = int64_t(int32_t(le32(part.window, 8))) - int32_t(le32(part.window, 0)) + 1;
+  const int64_t height = int64_t(int32_t(le32(part.window, 12))) - int32_t(le32(part.window, 4)) + 1;
+  constexpr int64_t kSmallTile = 256;
+  if (tile_width <= std::max(width, kSmallTile) && tile_height <= std::max(height, kSmallTile)) return;
+  throw Error("cannot read EXR file '" + path + "': its tiles (" + std::to_string(tile_width) + "x" +
+              std::to_string(tile_height) + ") are larger than its " + std::to_string(width) + "x" +
+              std::to_string(height) + " image (damaged?)");
+}
+
 // OpenEXR 3.1 believes the size a header attribute declares: a 126-byte file whose header announces a 1.9 GB
 // string makes it allocate and clear 1.9 GB before it finds the file too short (fuzz/exr_reader_fuzz found
 // it). Only some types read the declared size, though: a chlist is read up to its end marker, a box2i is 16
@@ -100,14 +132,19 @@ int64_t channel_list_size(const std::string& value) {
 // attributes, each name\0 type\0 size (int32, little-endian) value[size], ended by an empty name; in a
 // multi-part file an empty name also follows the last part's header. Other damage (a name without its \0
 // or longer than the 255 characters OpenEXR allows) is left to OpenEXR, which reports it.
+//
+// The walk also checks each part's tile size against its data window (require_tiles_fit).
 void require_consistent_header(const std::string& path, bool multi_part) {
   std::error_code ec;
   const auto file_size = std::streamoff(std::filesystem::file_size(path, ec));
   std::ifstream in(path, std::ios::binary);
   if (ec || !in.seekg(8)) return;
   bool part_ended = false;  // the last attribute list ended; in a multi-part file another may follow
+  PartShape part;
   for (std::string name, type; std::getline(in, name, '\0');) {
     if (name.empty()) {
+      require_tiles_fit(path, part);
+      part = PartShape{};
       if (!multi_part || part_ended) return;  // the end of the (last) header
       part_ended = true;
       continue;
@@ -135,6 +172,8 @@ void require_consistent_header(const std::string& path, bool multi_part) {
     if (read != size)
       throw Error(what + "of type '" + one_line(type) + "' declares " + std::to_string(size) +
                   " bytes but its value takes " + (read < 0 ? "more" : std::to_string(read)));
+    if (name == "dataWindow" && type == "box2i") part.window = value;
+    if (name == "tiles" && type == "tiledesc") part.tiles = value;
   }
 }
 

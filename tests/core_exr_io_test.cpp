@@ -391,3 +391,50 @@ TEST_CASE("read_exr rejects an uncompressed file too small for its pixels") {
   CHECK(message.find("uncompressed") != std::string::npos);
   CHECK(message.find("rows of 400000 bytes") != std::string::npos);
 }
+
+TEST_CASE("read_exr rejects tiles larger than the image, before OpenEXR allocates them") {
+  // fuzz/exr_reader_fuzz found a 1 KB tiled file whose tiles were declared 2^15 pixels wide: opening it made
+  // OpenEXR 3.1 allocate 2.2 GB of tile buffers. Here hand-made headers of an 8x8 tiled file; the check
+  // runs on the header alone, so no pixels follow.
+  TempDir dir;
+  auto tiled_header = [](uint32_t tile_width, uint32_t tile_height) {
+    ExrBytes f;
+    f.put(uint32_t(20000630));      // magic number
+    f.put(uint32_t(2 | 0x200));     // version 2, single-part tiled
+    f.attribute("channels", "chlist", 2 + 16 + 1);
+    f.put_name("Y");
+    f.put(int32_t(2));    // FLOAT
+    f.put(uint32_t(0));   // pLinear, reserved
+    f.put(int32_t(1));    // xSampling
+    f.put(int32_t(1));    // ySampling
+    f.bytes.push_back(0);
+    f.attribute("compression", "compression", 1);
+    f.bytes.push_back(0);
+    for (const char* window : {"dataWindow", "displayWindow"}) {
+      f.attribute(window, "box2i", 16);
+      for (int32_t v : {0, 0, 7, 7}) f.put(v);
+    }
+    f.attribute("tiles", "tiledesc", 9);
+    f.put(tile_width);
+    f.put(tile_height);
+    f.bytes.push_back(0);  // ONE_LEVEL, ROUND_DOWN
+    f.bytes.push_back(0);  // end of header
+    return f.bytes;
+  };
+  auto message_for = [&](uint32_t tile_width, uint32_t tile_height) {
+    const std::string path = dir.file(std::to_string(tile_width) + "x" + std::to_string(tile_height) + ".exr");
+    write_bytes(path, tiled_header(tile_width, tile_height));
+    const std::string message = error_of([&] { rtdr::read_exr(path); });
+    check_one_line_naming(message, path);
+    return message;
+  };
+  CHECK(message_for(32768, 32768).find("its tiles (32768x32768) are larger than its 8x8 image") !=
+        std::string::npos);
+  CHECK(message_for(257, 8).find("tiles (257x8) are larger") != std::string::npos);
+  CHECK(message_for(8, 0x80000000u).find("tiles (8x2147483648) are larger") != std::string::npos);
+  // Tiles up to 256 pixels are accepted for any image: the file is then refused for what it lacks (pixels).
+  for (const uint32_t side : {1u, 8u, 64u, 256u}) {
+    INFO("tile side " << side);
+    CHECK(message_for(side, side).find("tiles (") == std::string::npos);
+  }
+}

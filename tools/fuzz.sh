@@ -1,18 +1,32 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses of fuzz/ (fuzz/README.md) with clang into build-fuzz/ and runs each one
-# for SECONDS seconds (default 60, what CI runs). Exits non-zero when any harness finds something: a crash,
-# a sanitizer report, a timeout, an out-of-memory, or an exception that is not rtdr::Error.
+# Builds the libFuzzer harnesses of fuzz/ (fuzz/README.md) with clang into build-fuzz/ and runs each one.
+# Exits non-zero when any harness finds something: a crash, a sanitizer report, a timeout, an out-of-memory,
+# or an exception that is not rtdr::Error.
 #
-#   bash tools/fuzz.sh [SECONDS]
+#   bash tools/fuzz.sh [SECONDS]    explore: each harness for SECONDS seconds (default 60), a new seed each time
+#   bash tools/fuzz.sh --runs=N     replay: each harness for N inputs from seed 1 (what CI runs)
 #
-# Each harness works on build-fuzz/corpus/<harness>/, which starts as a copy of fuzz/corpus/<harness>/ and
-# keeps what earlier runs found (delete it to start over); the seeds in git are never written to. Inputs
-# that fail are saved in build-fuzz/findings/<harness>/, each run's output in build-fuzz/logs/<harness>.log.
+# Exploring finds new inputs but never the same ones twice, so it cannot gate a merge: a run that passes
+# here could fail in CI on the same code. A replay is the same inputs for the same code on every machine,
+# so CI fails only when a change makes one of them fail.
+#
+# Exploring works on build-fuzz/corpus/<harness>/, which starts as a copy of fuzz/corpus/<harness>/ and
+# keeps what earlier runs found (delete it to start over); a replay starts from a fresh copy every time. The
+# seeds in git are never written to. Inputs that fail are saved in build-fuzz/findings/<harness>/, each
+# run's output in build-fuzz/logs/<harness>.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-duration="${1:-60}"
-[[ "$duration" =~ ^[1-9][0-9]*$ ]] || { echo "usage: bash tools/fuzz.sh [SECONDS]" >&2; exit 2; }
+budget=(-max_total_time="${1:-60}")
+what="for ${1:-60} s"
+if [[ "${1:-}" =~ ^--runs=([1-9][0-9]*)$ ]]; then
+  budget=(-runs="${BASH_REMATCH[1]}" -seed=1)
+  what="for ${BASH_REMATCH[1]} inputs from seed 1"
+  replay=1
+elif ! [[ "${1:-60}" =~ ^[1-9][0-9]*$ ]]; then
+  echo "usage: bash tools/fuzz.sh [SECONDS | --runs=N]" >&2
+  exit 2
+fi
 
 # The project's own dependencies (and build/: an up-to-date check once it is built), then clang with its
 # runtime libraries (compiler-rt: libFuzzer, AddressSanitizer, UndefinedBehaviorSanitizer), which Debian
@@ -36,12 +50,14 @@ summary=()
 failed=0
 for harness in gltf_loader_fuzz exr_reader_fuzz cli_args_fuzz; do
   corpus="build-fuzz/corpus/$harness" findings="build-fuzz/findings/$harness" log="build-fuzz/logs/$harness.log"
+  # A replay starts from the seeds in git alone, never from what earlier runs on this machine kept.
+  [ -z "${replay:-}" ] || { corpus="build-fuzz/replay/$harness"; rm -rf "$corpus"; }
   mkdir -p "$corpus" "$findings" build-fuzz/logs
   cp fuzz/corpus/"$harness"/* "$corpus"/
-  echo "fuzz: $harness for $duration s (log: $log)"
+  echo "fuzz: $harness $what (log: $log)"
   # -timeout: one input taking 10 s is a hang. -rss_limit_mb: more memory than this is a finding too.
   status=0
-  "build-fuzz/fuzz/$harness" "$corpus" -dict="fuzz/$harness.dict" -max_total_time="$duration" -timeout=10 \
+  "build-fuzz/fuzz/$harness" "$corpus" -dict="fuzz/$harness.dict" "${budget[@]}" -timeout=10 \
     -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 </dev/null >"$log" 2>&1 || status=$?
 
   # libFuzzer's last lines: "Done N runs in S second(s)", and the last status line "#N ... cov: C ft: F".

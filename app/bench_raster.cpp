@@ -2,7 +2,7 @@
 // scene (issue target: visibility + G-buffer <= 50 ms at 1280x720 on 2 cores; docs/performance.md).
 #include "app/bench.h"
 #include "core/parallel.h"
-#include "raster/backproject.h"
+#include "motion/backproject.h"
 #include "raster/gbuffer_frame.h"
 #include "raster/gbuffer.h"
 #include "raster/view.h"

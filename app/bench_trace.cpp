@@ -7,6 +7,7 @@
 //   - the memory of one frame's planes as written to EXR.
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "motion/backproject.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -62,6 +63,7 @@ void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
     const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
     Frame frame(size.width, size.height);
     write_gbuffer_layers(scene, g, frame);
+    write_motion_layers(scene, g, frame);
     // The frame time (BVH build, tracing, writing the layers) and, inside it, the tracing loop alone.
     std::vector<double> loop_seconds;
     TraceStats stats;

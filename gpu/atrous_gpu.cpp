@@ -11,9 +11,6 @@
 
 namespace rtdr {
 
-// The numbers the shader takes from atrous_shared.h and the golden code from elsewhere must agree.
-static_assert(kGaussian3[0] == kPrefilterEdge && kGaussian3[1] == kPrefilterCentre && kGaussian3[2] == kPrefilterEdge);
-
 AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, const FloatPlane& variance,
                                  const SurfacePlanes& s, int level, const SvgfParams& params, double* ms) {
   atrous_kernel(params.kernel_size);  // throws on a bad kernel_size, as atrous_level does

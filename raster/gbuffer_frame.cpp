@@ -1,6 +1,5 @@
 #include "raster/gbuffer_frame.h"
 
-#include "raster/backproject.h"
 #include "raster/gbuffer.h"
 
 namespace rtdr {
@@ -18,8 +17,6 @@ FrameGeometry rasterize_frame(const Scene& scene, int frame_index, int width, in
 
 void write_gbuffer_layers(const Scene& scene, const FrameGeometry& g, Frame& frame) {
   write_gbuffer(resolve_gbuffer(scene, g.pose, g.view, g.vis), frame);
-  // Motion vectors m(x_i) = x_{i-1} - x_i in pixels [TRMV21 Eq. 1].
-  write_motion(backproject_motion(scene, g.prev_pose, g.prev_view, g.vis), frame);
 }
 
 }  // namespace rtdr

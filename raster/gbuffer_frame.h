@@ -1,6 +1,6 @@
 // One frame of the G-buffer sequence, as `rtdr render` writes it: rasterize the visibility buffer at the
-// frame's time, resolve the G-buffer, back-project motion vectors to the previous frame [TRMV21 Eq. 1],
-// and gather everything into the named layers of docs/buffers.md.
+// frame's time, resolve the G-buffer, and gather it into the named layers of docs/buffers.md. The motion
+// layers come from the same geometry (write_motion_layers in motion/backproject.h).
 #pragma once
 
 #include "core/frame.h"
@@ -22,7 +22,7 @@ struct FrameGeometry {
 
 FrameGeometry rasterize_frame(const Scene& scene, int frame_index, int width, int height);
 
-// Adds the G-buffer and motion layers of `geometry` to `frame` (which has the same size).
+// Adds the G-buffer layers of `geometry` to `frame` (which has the same size).
 void write_gbuffer_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

@@ -23,7 +23,7 @@
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
-#include "raster/backproject.h"
+#include "motion/backproject.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 

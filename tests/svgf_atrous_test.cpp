@@ -128,13 +128,18 @@ TEST_CASE("the probe's weights normalise and rebuild the output", "[svgf][atrous
           }
           const double hw = probe.find("h w", g).value[0];
           CHECK(probe.find("h(q)", g).value[0] == Approx(h1(kernel_size, k) * h1(kernel_size, j)).epsilon(1e-6));
-          // w = w_z w_n w_l [SVGF17 Eq. 2], each as edge_stopping.h computes it.
+          // w = w_z w_n w_l [SVGF17 Eq. 2], exactly: the filter multiplies the weights edge_stopping.h
+          // computes, the same values the probe reports.
           const float w_z = probe.find("w_z", g).value[0], w_n = probe.find("w_n", g).value[0];
           const float w_l = probe.find("w_l", g).value[0];
-          CHECK(probe.find("w", g).value[0] == Approx(w_z * w_n * w_l).epsilon(1e-6));
-          if (k != 0 || j != 0)
+          CHECK(probe.find("w", g).value[0] == w_z * w_n * w_l);
+          if (k != 0 || j != 0) {
             CHECK(w_z == weight_depth(s.depth.at(x, y), s.depth.at(qx, qy), s.depth_grad.at(x, y),
                                       glm::vec2(float(-k * step), float(-j * step)), p.sigma_z, p.epsilon));
+            CHECK(w_n == weight_normal(s.normal.at(x, y), s.normal.at(qx, qy), p.sigma_n));
+            CHECK(w_l == weight_luminance(luminance(color.at(x, y)), luminance(color.at(qx, qy)),
+                                          var_g3x3.at(x, y), p.sigma_l, p.epsilon));
+          }
           weights += hw / sum_hw;  // the normalised weight of tap q
           c_sum += hw / sum_hw * glm::dvec3(color.at(qx, qy));
           var_sum += hw * hw / (double(sum_hw) * sum_hw) * var.at(qx, qy);

@@ -202,7 +202,7 @@ TEST_CASE("a static scene with history = current gives the input back") {
 }
 
 TEST_CASE("jitter compensation: a static scene rendered with jitter reads the history at the pixel centre") {
-  // For a static scene and camera the renderer's motion is j_prev - j_cur (raster/backproject.h).
+  // For a static scene and camera the renderer's motion is j_prev - j_cur (motion/backproject.h).
   const TaaJitter jitter{taa_jitter(5), taa_jitter(4)};
   const RgbPlane image = grey_ramp(8, 6);
   const Vec2Plane motion(8, 6, jitter.previous - jitter.current);
@@ -352,7 +352,7 @@ TEST_CASE("missing or off-screen history: the output is the current colour") {
   CHECK(taa_pixel(image, history, Vec2Plane(6, 5, glm::vec2(-0.6f, 0.0f)), 0, 2, TaaParams{}, {}, &probe) ==
         image.at(0, 2));  // history at x = -0.1: off screen
   CHECK(probe.find("history on screen").value[0] == 0.0f);
-  // kMotionBehindCamera (raster/backproject.h) puts the history 1e6 pixels away.
+  // kMotionBehindCamera (motion/backproject.h) puts the history 1e6 pixels away.
   CHECK(taa_pixel(image, history, Vec2Plane(6, 5, glm::vec2(1e6f)), 3, 3, TaaParams{}) == image.at(3, 3));
   const RgbPlane first_frame = taa_pass(image, RgbPlane{}, Vec2Plane(6, 5), TaaParams{});
   CHECK(first_frame.data == image.data);

@@ -3,6 +3,7 @@
 
 #include "core/color.h"
 #include "core/parallel.h"
+#include "motion/backproject.h"
 #include "trace/sampler.h"
 
 #include <chrono>
@@ -115,6 +116,7 @@ Frame render_frame(const Scene& scene, int frame_index, int width, int height, c
   const FrameGeometry geometry = rasterize_frame(scene, frame_index, width, height);
   Frame frame(width, height);
   write_gbuffer_layers(scene, geometry, frame);
+  write_motion_layers(scene, geometry, frame);
   const TraceStats s = trace_layers(scene, geometry, settings, frame, rows_done);
   if (stats) *stats = s;
   return frame;

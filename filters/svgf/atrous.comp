@@ -1,19 +1,23 @@
 // One level of SVGF's edge-avoiding a-trous wavelet filter [SVGF17 Sec. 4.3, Eq. 1-5] with its variance prefilter
 // [SVGF17 Sec. 4.4], the Vulkan port of atrous_pixel (atrous.cpp) and prefilter_variance_pixel (prefilter.cpp),
-// line for line (read_centre, tap_weight and centre_weight likewise). One difference in where things happen:
-// the golden read_centre reads g3x3(Var) from the plane atrous_level prefilters first, for the whole frame; this
-// one computes it for its pixel (and, with keep_prefiltered set, main() computes it once more to write it out).
+// line for line (read_centre, tap_weight and centre_weight likewise):
 //   g3x3(Var(c_i))(p) = sum g(dx) g(dy) Var(c_i)(p + (dx, dy)), clamped borders  (Eq. 5's prefilter)
-//   c_{i+1}(p)        = sum h w c_i(q) / sum h w
-//   Var(c_{i+1}(p))   = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2
-// Same skip rules: taps outside the image and taps without a surface add nothing (here: with w = 0), a pixel without a
-// surface passes through, the centre tap gets w = 1. One dispatch per level filters both streams, direct and indirect:
-// one invocation per pixel, one fetch of the tap's surface record shared by both, whose w_z and w_n are the same
-// [SVGF17 Eq. 3, 4] (only w_l [Eq. 5] differs per stream), and of its illumination pair (planes_shared.h). A plain
-// gather, no shared memory: on lavapipe a shared-memory tile measured 2x slower than the gather, and on an H100 2.3x
-// slower at steps 1 and 2, where its shared memory also slowed the untiled levels 3x (docs/performance.md). The kernel
-// size is a specialization constant, so the compiler knows the taps and unrolls their loops (half the instructions on
-// lavapipe).
+//   w(p, q)           = w_z w_n w_l                                               (Eq. 2-5)
+//   c_{i+1}(p)        = sum h w c_i(q) / sum h w                                  (Eq. 1)
+//   Var(c_{i+1}(p))   = sum h^2 w^2 Var(c_i(q)) / (sum h w)^2                     (Sec. 4.3)
+// Same skip rules: taps outside the image and taps without a surface add nothing, a pixel without a surface passes
+// through, the centre tap gets w = 1.
+// What differs from the golden pass, and why (each marked GPU only below):
+// - The three weights are fused into exp(sigma_n ln cos - a_z - a_l): one exp and one log per tap instead of two
+//   exps and a pow. Equal up to float rounding; the port's error bound covers it (tests/gpu_atrous_test.cpp).
+// - g3x3(Var) is computed per pixel here (and once more when keep_prefiltered asks for it to be written), where
+//   the golden atrous_level prefilters the whole frame first. The same sum in the same order.
+// - A skipped tap gets w = 0 and adds zeros, rather than being skipped by a branch: the same sums.
+// - One dispatch per level filters both streams, direct and indirect, with one fetch of the tap's surface record
+//   (whose w_z and w_n [Eq. 3, 4] both streams share; only w_l [Eq. 5] differs) and of its illumination pair
+//   (planes_shared.h).
+// - A plain gather, no shared memory, and the kernel size as a specialization constant, so the compiler unrolls
+//   the taps. Both choices were measured; the figures are in docs/performance.md.
 //   in:  bindings 0: illumination (c_i, Var(c_i)) of both streams, direct and indirect; 1: surface; 2: depth
 //        gradient;
 //   out: bindings 3: illumination (c_{i+1}, Var(c_{i+1})); 4: g3x3(Var(c_i)) of both streams, written only
@@ -22,7 +26,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
+#include "core/color.glsl"
 #include "filters/svgf/atrous_shared.h"
+#include "filters/svgf/edge_stopping.glsl"
 
 // The workgroup's shape, per device (planes_shared.h).
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
@@ -48,23 +54,6 @@ layout(constant_id = kAtrousKernelSizeConstant) const int kernel_size = 5;
 int index_of(int x, int y) { return y * int(frame.width) + x; }
 bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.width) && y < int(frame.height); }
 
-// core/color.h's luminance, in its order of operations.
-float luminance(vec3 rgb) {
-  precise float l = RTDR_LUMINANCE_R * rgb.r + RTDR_LUMINANCE_G * rgb.g + RTDR_LUMINANCE_B * rgb.b;
-  return l;
-}
-
-// glm::dot in glm's order: (a.x b.x + a.y b.y) + a.z b.z, and a.x b.x + a.y b.y. GPU only: GLSL's dot() may
-// fuse or reorder.
-float dot3(vec3 a, vec3 b) {
-  precise float d = a.x * b.x + a.y * b.y + a.z * b.z;
-  return d;
-}
-float dot2(vec2 a, vec2 b) {
-  precise float d = a.x * b.x + a.y * b.y;
-  return d;
-}
-
 // --- prefilter.cpp ---
 
 // The 1D binomial weights (1/4, 1/2, 1/4) (prefilter.h's kGaussian3).
@@ -87,21 +76,7 @@ vec2 prefilter_variance_pixel(int x, int y) {
   return sum;
 }
 
-// --- edge_stopping.cpp, atrous.cpp ---
-
-// a_z [SVGF17 Eq. 3] (edge_stopping.h's depth_exponent).
-float depth_exponent(float z_p, float z_q, vec2 grad_z_p, vec2 offset_pq, float sigma_z, float epsilon) {
-  // The depth change the local plane predicts over p - q, scaled by sigma_z [SVGF17 Eq. 3, denominator].
-  precise float predicted = sigma_z * abs(dot2(grad_z_p, offset_pq)) + epsilon;
-  // At q = p: 0 / epsilon = 0, so w_z = exp(-0) = 1 exactly (epsilon > 0 keeps 0 / 0 away).
-  return abs(z_p - z_q) / predicted;
-}
-
-// Eq. 5's denominator, sigma_l sqrt(g3x3(Var(l(p)))) + epsilon (edge_stopping.cpp's luminance_scale).
-float luminance_scale(float variance_prefiltered_p, float sigma_l, float epsilon) {
-  precise float scale = sigma_l * sqrt(max(0.0f, variance_prefiltered_p)) + epsilon;
-  return scale;
-}
+// --- atrous.cpp (the weights: edge_stopping.glsl) ---
 
 // What the weights need to know about p, read once per pixel.
 struct Centre {
@@ -111,7 +86,8 @@ struct Centre {
   vec3 n;             // n(p), world space [SVGF17 Eq. 4]
   vec2 l;             // l_i(p), luminance of this level's input [SVGF17 Eq. 5], per stream
   vec2 var_g3x3;      // g3x3(Var(l_i))(p) [SVGF17 Eq. 5], per stream
-  vec2 l_scale;       // Eq. 5's denominator, sigma_l sqrt(g3x3(Var)(p)) + epsilon, per stream
+  vec2 l_scale;       // Eq. 5's denominator, sigma_l sqrt(g3x3(Var)(p)) + epsilon, per stream (GPU only: once
+                      // per pixel; the golden weight_luminance computes it per tap)
 };
 
 Centre read_centre(int x, int y, vec4 s, Illumination c) {
@@ -132,8 +108,11 @@ vec2 tap_weight(Centre c, int qx, int qy, vec4 s_q, Illumination c_q) {
   const float cos_pq = max(0.0f, dot3(c.n, s_q.xyz));
   const vec2 l_q = vec2(luminance(c_q.stream[0].rgb), luminance(c_q.stream[1].rgb));
   const vec2 a_l = abs(c.l - l_q) / c.l_scale;
-  // w = w_z w_n w_l [SVGF17 Eq. 2] = exp(sigma_n ln cos - a_z - a_l): one exp and one log for the three weights.
-  // sigma_n ln cos - a_z is the same for both streams; the subtractions keep the golden order.
+  // w = w_z w_n w_l [SVGF17 Eq. 2] = exp(-a_z) cos^sigma_n exp(-a_l) = exp(sigma_n ln cos - a_z - a_l).
+  // GPU only: one exp and one log for the three weights, where the golden tap_weight calls weight_depth,
+  // weight_normal and weight_luminance and multiplies (two exps and a pow). The same value up to float
+  // rounding, inside the port's error bound (tests/gpu_atrous_test.cpp). sigma_n ln cos - a_z is the same for
+  // both streams.
   precise float exponent_zn = frame.sigma_n * log(cos_pq) - a_z;
   precise vec2 exponent = exponent_zn - a_l;
   // w_n = 0 when facing away. GPU only: a select, not an early return (see main()).

@@ -55,14 +55,12 @@ struct Centre {
   glm::vec3 n;        // n(p), world space [SVGF17 Eq. 4]
   float l;            // l_i(p), luminance of this level's input [SVGF17 Eq. 5]
   float var_g3x3;     // g3x3(Var(l_i))(p) [SVGF17 Eq. 5]
-  float l_scale;      // Eq. 5's denominator, sigma_l sqrt(g3x3(Var)(p)) + epsilon
 };
 
-Centre read_centre(const RgbPlane& color, const FloatPlane& prefiltered_variance, const SurfacePlanes& s,
-                   const SvgfParams& params, int x, int y, Probe* probe) {
-  const float var_g3x3 = prefiltered_variance.at(x, y);
-  const Centre c{x,          y, s.depth.at(x, y), s.depth_grad.at(x, y), s.normal.at(x, y), luminance(color.at(x, y)),
-                 var_g3x3, luminance_scale(var_g3x3, params.sigma_l, params.epsilon)};
+Centre read_centre(const RgbPlane& color, const FloatPlane& prefiltered_variance, const SurfacePlanes& s, int x,
+                   int y, Probe* probe) {
+  const Centre c{x,  y, s.depth.at(x, y), s.depth_grad.at(x, y), s.normal.at(x, y), luminance(color.at(x, y)),
+                 prefiltered_variance.at(x, y)};
   note(probe, "z(p)", c.z, "[SVGF17 Eq. 3]");
   note(probe, "grad z(p)", c.grad_z, "[SVGF17 Eq. 3]");
   note(probe, "n(p)", c.n, "[SVGF17 Eq. 4]");
@@ -79,20 +77,18 @@ float tap_weight(const Centre& p, const RgbPlane& color, const SurfacePlanes& s,
   note(probe, "p - q", offset_pq, "[SVGF17 Eq. 3]");
   const float z_q = s.depth.at(qx, qy);
   note(probe, "z(q)", z_q, "[SVGF17 Eq. 3]");
-  const float a_z = depth_exponent(p.z, z_q, p.grad_z, offset_pq, params.sigma_z, params.epsilon);
-  const float cos_pq = std::max(0.0f, glm::dot(p.n, s.normal.at(qx, qy)));
+  const glm::vec3 n_q = s.normal.at(qx, qy);
+  note(probe, "n(q)", n_q, "[SVGF17 Eq. 4]");
   const float l_q = luminance(color.at(qx, qy));
   note(probe, "l(q)", l_q, "[SVGF17 Eq. 5]");
-  const float a_l = std::abs(p.l - l_q) / p.l_scale;
-  if (probe) {  // each weight on its own, as the paper writes them
-    note(probe, "w_z", std::exp(-a_z), "[SVGF17 Eq. 3]");
-    note(probe, "w_n", std::pow(cos_pq, params.sigma_n), "[SVGF17 Eq. 4]");
-    note(probe, "w_l", std::exp(-a_l), "[SVGF17 Eq. 5]");
-  }
-  if (cos_pq <= 0.0f) return 0.0f;  // w_n = 0: facing away
-  // w = w_z w_n w_l [SVGF17 Eq. 2] = exp(-a_z) cos^sigma_n exp(-a_l) = exp(sigma_n ln cos - a_z - a_l):
-  // one exp and one log for the three weights (edge_stopping.h).
-  return std::exp(params.sigma_n * std::log(cos_pq) - a_z - a_l);
+  const float w_z = weight_depth(p.z, z_q, p.grad_z, offset_pq, params.sigma_z, params.epsilon);
+  note(probe, "w_z", w_z, "[SVGF17 Eq. 3]");
+  const float w_n = weight_normal(p.n, n_q, params.sigma_n);
+  note(probe, "w_n", w_n, "[SVGF17 Eq. 4]");
+  const float w_l = weight_luminance(p.l, l_q, p.var_g3x3, params.sigma_l, params.epsilon);
+  note(probe, "w_l", w_l, "[SVGF17 Eq. 5]");
+  // w(p, q) = w_z w_n w_l [SVGF17 Eq. 2]. (atrous.comp fuses the three into one exp and one log, GPU-only.)
+  return w_z * w_n * w_l;
 }
 
 // w(p, p) = 1: Eq. 3-5 at q = p, written down rather than computed (see the banner).
@@ -119,7 +115,7 @@ AtrousPixel atrous_pixel(const RgbPlane& color, const FloatPlane& variance, cons
   const AtrousKernel kernel = atrous_kernel(p.kernel_size);
   const int step = 1 << level;  // 2^i: the taps' spacing at level i
   note(probe, "step 2^i", float(step), "[SVGF17 Sec. 4.3]");
-  const Centre centre = read_centre(color, prefiltered_variance, s, p, x, y, probe);
+  const Centre centre = read_centre(color, prefiltered_variance, s, x, y, probe);
 
   float sum_hw = 0.0f;              // sum h w        [SVGF17 Eq. 1, denominator]
   glm::vec3 sum_hwc(0.0f);          // sum h w c_i(q) [SVGF17 Eq. 1, numerator]

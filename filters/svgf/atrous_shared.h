@@ -8,7 +8,9 @@
 // (c_{i+1}, Var(c_{i+1})) written, 4 g3x3(Var(c_i)) of both streams written (vec2 per pixel) when keep_prefiltered.
 //
 // Accuracy of the port: the shader does the golden functions' fp32 operations in the same order (the sums and
-// products are `precise`, so no fma contraction changes their rounding). What differs is exp, log and sqrt:
+// products are `precise`, so no fma contraction changes their rounding), except that it fuses the three weights
+// into one exp and one log, exp(sigma_n ln cos - a_z - a_l), where the golden code multiplies exp(-a_z),
+// cos^sigma_n and exp(-a_l): the same value up to a few roundings. Beyond that what differs is exp, log and sqrt:
 // GLSL's exp may be off by 3 + 2|x| ulp and log by a few ulp where libm's are within 1 ulp. With the tap exponents
 // that matter (|x| < ~20; smaller weights are under 2e-9 of the centre's) a tap weight differs by a relative few
 // 1e-6; the colour is a ratio of weighted sums (~2x that), the variance of squared weights (~4x). The prefilter
@@ -39,8 +41,7 @@ RTDR_SHARED_CONST float kAtrousB3Inner = 1.0f / 4.0f;   // h(+-1)
 RTDR_SHARED_CONST float kAtrousB3Centre = 3.0f / 8.0f;  // h(0)
 RTDR_SHARED_CONST float kAtrousBox = 1.0f / 3.0f;       // h(-1) = h(0) = h(1)
 
-// The prefilter's 1D binomial weights g = (1/4, 1/2, 1/4) [SVGF17 Sec. 4.4]. prefilter.h's kGaussian3 holds the
-// same numbers (gpu/atrous_gpu.cpp static_asserts that they agree).
+// The prefilter's 1D binomial weights g = (1/4, 1/2, 1/4) [SVGF17 Sec. 4.4]; prefilter.h's kGaussian3 is made of them.
 RTDR_SHARED_CONST float kPrefilterEdge = 0.25f;   // g(+-1)
 RTDR_SHARED_CONST float kPrefilterCentre = 0.5f;  // g(0)
 

@@ -21,8 +21,11 @@
 namespace rtdr {
 
 float weight_depth(float z_p, float z_q, glm::vec2 grad_z_p, glm::vec2 offset_pq, float sigma_z, float epsilon) {
-  // w_z = exp(-|z(p) - z(q)| / (sigma_z |grad z(p) . (p - q)| + epsilon)) [SVGF17 Eq. 3].
-  return std::exp(-depth_exponent(z_p, z_q, grad_z_p, offset_pq, sigma_z, epsilon));
+  // The depth change the local plane predicts over p - q, scaled by sigma_z [SVGF17 Eq. 3, denominator].
+  const float predicted = sigma_z * std::abs(glm::dot(grad_z_p, offset_pq)) + epsilon;
+  // w_z = exp(-|z(p) - z(q)| / predicted) [SVGF17 Eq. 3]. At q = p: 0 / epsilon = 0, so w_z = 1 exactly
+  // (epsilon > 0 keeps 0 / 0 away).
+  return std::exp(-std::abs(z_p - z_q) / predicted);
 }
 
 float weight_normal(glm::vec3 n_p, glm::vec3 n_q, float sigma_n) {

@@ -8,8 +8,6 @@
 
 #include <glm/glm.hpp>
 
-#include <cmath>
-
 namespace rtdr {
 
 // Depth weight w_z [SVGF17 Eq. 3]: exp(-|z(p) - z(q)| / (sigma_z |grad z(p) . (p - q)| + epsilon)).
@@ -24,18 +22,10 @@ float weight_normal(glm::vec3 n_p, glm::vec3 n_q, float sigma_n);
 // variance_prefiltered_p is g3x3(Var)(p) from filters/svgf/prefilter.h.
 float weight_luminance(float l_p, float l_q, float variance_prefiltered_p, float sigma_l, float epsilon);
 
-// The same weights as exponents, w = exp(-a). The a-trous multiplies all three per tap, and
-// exp(-a_z) (n(p) . n(q))^sigma_n exp(-a_l) = exp(sigma_n ln(n(p) . n(q)) - a_z - a_l): one exp and one log
-// instead of two exps and a pow, the a-trous' largest cost.
-// a_z = |z(p) - z(q)| / (sigma_z |grad z(p) . (p - q)| + epsilon) [SVGF17 Eq. 3].
-// Inline: the a-trous evaluates it for every tap.
-inline float depth_exponent(float z_p, float z_q, glm::vec2 grad_z_p, glm::vec2 offset_pq, float sigma_z, float epsilon) {
-  // The depth change the local plane predicts over p - q, scaled by sigma_z [SVGF17 Eq. 3, denominator].
-  const float predicted = sigma_z * std::abs(glm::dot(grad_z_p, offset_pq)) + epsilon;
-  // At q = p: 0 / epsilon = 0, so w_z = exp(-0) = 1 exactly (epsilon > 0 keeps 0 / 0 away).
-  return std::abs(z_p - z_q) / predicted;
-}
-// Eq. 5's denominator, sigma_l sqrt(g3x3(Var(l(p)))) + epsilon: one value per pixel p, so a_l = |l(p) - l(q)| / it.
+// Eq. 5's denominator, sigma_l sqrt(g3x3(Var(l(p)))) + epsilon: the luminance change noise alone explains at p.
 float luminance_scale(float variance_prefiltered_p, float sigma_l, float epsilon);
+
+// The Vulkan ports mirror these functions in edge_stopping.glsl, which also holds the fused form the a-trous
+// shader uses (GPU-only).
 
 }  // namespace rtdr

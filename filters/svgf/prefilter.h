@@ -6,11 +6,13 @@
 
 #include "filters/image.h"
 #include "filters/probe.h"
+#include "filters/svgf/atrous_shared.h"
 
 namespace rtdr {
 
 // The 1D binomial weights (1/4, 1/2, 1/4); the 3x3 kernel is their outer product g(dx) g(dy), which sums to 1.
-inline constexpr float kGaussian3[3] = {0.25f, 0.5f, 0.25f};
+// The numbers are written once, in atrous_shared.h, which the Vulkan port of the a-trous level includes too.
+inline constexpr float kGaussian3[3] = {kPrefilterEdge, kPrefilterCentre, kPrefilterEdge};
 
 // g3x3(Var)(x, y) [SVGF17 Sec. 4.4]: sum over the 3x3 neighbourhood of g(dx) g(dy) Var(x + dx, y + dy), with
 // clamped borders (a tap outside the image reads the nearest edge pixel).

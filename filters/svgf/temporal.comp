@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
+#include "core/color.glsl"
 #include "filters/svgf/temporal_shared.h"
 
 // The workgroup's shape, per device (planes_shared.h).
@@ -41,13 +42,6 @@ TemporalPush frame;
 int cur_index(int x, int y) { return y * int(frame.width) + x; }
 int prev_index(ivec2 q) { return q.y * int(frame.prev_width) + q.x; }
 bool prev_inside(ivec2 q) { return q.x >= 0 && q.y >= 0 && q.x < int(frame.prev_width) && q.y < int(frame.prev_height); }
-
-// core/color.h's luminance: R r + G g + B b, in that order.
-float luminance(vec3 rgb) {
-  // GPU only: `precise` keeps the two multiply-adds from fusing into fmas (C++ rounds each product).
-  precise float l = RTDR_LUMINANCE_R * rgb.r + RTDR_LUMINANCE_G * rgb.g + RTDR_LUMINANCE_B * rgb.b;
-  return l;
-}
 
 // One stream's history values at p': weighted sums while the taps are gathered, the resampled history afterwards.
 struct HistorySample {

@@ -5,6 +5,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#include "core/color.glsl"
 #include "filters/svgf/tonemap_shared.h"
 
 // The workgroup's shape, per device (planes_shared.h).
@@ -15,14 +16,6 @@ RTDR_INPUT_RGBA(0, colour_in)
 layout(std430, set = 0, binding = 1) writeonly buffer Display { vec4 display_out[]; };
 
 layout(push_constant) uniform Push { TonemapPush frame; };
-
-// Relative luminance Y, Rec. 709 weights (core/color.h's luminance, numbers in core/color_shared.h).
-// GPU only: `precise` forbids fusing the products and sums into fmas, so the port rounds after each
-// operation in the same order, (R term + G term) + B term, as the C++ does.
-float luminance(vec3 rgb) {
-  precise float y = RTDR_LUMINANCE_R * rgb.r + RTDR_LUMINANCE_G * rgb.g + RTDR_LUMINANCE_B * rgb.b;
-  return y;
-}
 
 vec3 tonemap_pixel(vec3 colour, float exposure) {
   // World luminance L_w of the HDR colour (Rec. 709 Y, core/color.h).

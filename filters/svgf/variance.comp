@@ -9,6 +9,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#include "filters/svgf/edge_stopping.glsl"
 #include "filters/svgf/variance_shared.h"
 
 // The workgroup's shape, per device (planes_shared.h).
@@ -31,31 +32,6 @@ VariancePush frame;
 // The planes' accessors (Plane::at, inside): element y * width + x.
 int index_of(int x, int y) { return y * int(frame.width) + x; }
 bool inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.width) && y < int(frame.height); }
-
-// --- edge_stopping.h / edge_stopping.cpp ---
-
-// a_z = |z(p) - z(q)| / (sigma_z |grad z(p) . (p - q)| + epsilon) [SVGF17 Eq. 3].
-float depth_exponent(float z_p, float z_q, vec2 grad_z_p, vec2 offset_pq, float sigma_z, float epsilon) {
-  // The depth change the local plane predicts over p - q, scaled by sigma_z [SVGF17 Eq. 3, denominator].
-  // GPU only: the dot product written out and `precise`, so no fma changes the rounding of glm::dot's
-  // multiply, multiply, add, nor of the multiply-add with sigma_z and epsilon.
-  precise float dot_pq = grad_z_p.x * offset_pq.x + grad_z_p.y * offset_pq.y;
-  precise float predicted = sigma_z * abs(dot_pq) + epsilon;
-  // At q = p: 0 / epsilon = 0, so w_z = exp(-0) = 1 exactly (epsilon > 0 keeps 0 / 0 away).
-  return abs(z_p - z_q) / predicted;
-}
-
-float weight_depth(float z_p, float z_q, vec2 grad_z_p, vec2 offset_pq, float sigma_z, float epsilon) {
-  // w_z = exp(-|z(p) - z(q)| / (sigma_z |grad z(p) . (p - q)| + epsilon)) [SVGF17 Eq. 3].
-  return exp(-depth_exponent(z_p, z_q, grad_z_p, offset_pq, sigma_z, epsilon));
-}
-
-float weight_normal(vec3 n_p, vec3 n_q, float sigma_n) {
-  // w_n = max(0, n(p) . n(q))^sigma_n [SVGF17 Eq. 4]: a cosine lobe; back-facing pairs get 0.
-  // GPU only: the dot product written out and `precise`, in glm::dot's order ((x x + y y) + z z).
-  precise float cosine = n_p.x * n_q.x + n_p.y * n_q.y + n_p.z * n_q.z;
-  return pow(max(0.0, cosine), sigma_n);
-}
 
 // --- variance.cpp ---
 

@@ -20,7 +20,7 @@
 //
 // Jitter and motion, exactly. make_view (raster/view.h) moves the projected image by j pixels, so the sample
 // at pixel centre c = p + (0.5, 0.5) sees what an un-jittered camera sees at c - j. The renderer's motion
-// m = x_{i-1} - x_i (raster/backproject.h) is measured between the two frames' JITTERED screens, so for a
+// m = x_{i-1} - x_i (motion/backproject.h) is measured between the two frames' JITTERED screens, so for a
 // static scene and camera m = j_prev - j_cur, not 0. TAA wants the jitter-free motion
 //     m0 = m - (j_prev - j_cur)
 // because both the history and the output are un-jittered images: the content at c now was at c + m0

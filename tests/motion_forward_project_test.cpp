@@ -1,8 +1,8 @@
-// Tests of raster/forward_project.cpp [ASVGF18 Sec. 3.1, 3.3]: exact re-projection of a sample, the round
+// Tests of motion/forward_project.cpp [ASVGF18 Sec. 3.1, 3.3]: exact re-projection of a sample, the round
 // trip with back-projection on a moving object, occlusion against the current depth, off-screen samples.
-#include "raster/forward_project.h"
+#include "motion/forward_project.h"
 
-#include "raster/backproject.h"
+#include "motion/backproject.h"
 #include "scene_fixtures.h"
 
 #include <catch2/catch.hpp>

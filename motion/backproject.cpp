@@ -1,5 +1,5 @@
-// Back-projected motion vectors [TRMV21 Eq. 1]. Conventions and sign in raster/backproject.h.
-#include "raster/backproject.h"
+// Back-projected motion vectors [TRMV21 Eq. 1]. Conventions and sign in motion/backproject.h.
+#include "motion/backproject.h"
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -38,6 +38,10 @@ void write_motion(const std::vector<glm::vec2>& motion, Frame& frame) {
     throw Error("write_motion: " + std::to_string(motion.size()) + " motion vectors for a " +
                 std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + " frame");
   frame.set_vec2("motion", motion);
+}
+
+void write_motion_layers(const Scene& scene, const FrameGeometry& g, Frame& frame) {
+  write_motion(backproject_motion(scene, g.prev_pose, g.prev_view, g.vis), frame);
 }
 
 }  // namespace rtdr

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "core/frame.h"
+#include "raster/gbuffer_frame.h"
 #include "raster/view.h"
 #include "raster/visibility.h"
 #include "scenes/scene.h"
@@ -40,5 +41,9 @@ std::vector<glm::vec2> backproject_motion(const Scene& scene, const ScenePose& p
 
 // Writes the motion as the float channels motion.X and motion.Y. The frame must have the buffer's size.
 void write_motion(const std::vector<glm::vec2>& motion, Frame& frame);
+
+// The motion layers of one frame of `rtdr render`: every pixel of geometry.vis back-projected to the
+// previous frame's pose and View, written by write_motion.
+void write_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

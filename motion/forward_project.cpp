@@ -1,5 +1,5 @@
-// Forward projection of a surface sample [ASVGF18 Sec. 3.1, 3.3]. Conventions in raster/forward_project.h.
-#include "raster/forward_project.h"
+// Forward projection of a surface sample [ASVGF18 Sec. 3.1, 3.3]. Conventions in motion/forward_project.h.
+#include "motion/forward_project.h"
 
 #include <cmath>
 

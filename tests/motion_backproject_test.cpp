@@ -1,5 +1,5 @@
-// Tests of raster/backproject.cpp: motion vectors [TRMV21 Eq. 1] against analytically moved points.
-#include "raster/backproject.h"
+// Tests of motion/backproject.cpp: motion vectors [TRMV21 Eq. 1] against analytically moved points.
+#include "motion/backproject.h"
 
 #include "core/error.h"
 #include "scene_fixtures.h"

@@ -14,27 +14,26 @@ namespace rtdr {
 AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, const FloatPlane& variance,
                                  const SurfacePlanes& s, int level, const SvgfParams& params, double* ms) {
   atrous_kernel(params.kernel_size);  // throws on a bad kernel_size, as atrous_level does
-  const int w = color.width, h = color.height;
-  const auto same_size = [&](const auto& p) { return p.width == w && p.height == h; };
+  const int width = color.width, height = color.height;
+  const auto same_size = [&](const auto& p) { return p.width == width && p.height == height; };
   if (!same_size(variance) || !same_size(s.depth) || !same_size(s.depth_grad) || !same_size(s.normal) ||
       !same_size(s.mesh))
     throw Error("atrous_level_vulkan: colour, variance, depth, depth gradient, normal and mesh id must have the "
-                "same size (colour is " + std::to_string(w) + "x" + std::to_string(h) + ")");
+                "same size (colour is " + std::to_string(width) + "x" + std::to_string(height) + ")");
   if (level < 0 || level > 30) throw Error("atrous_level_vulkan: level must be in 0..30, got " + std::to_string(level));
-  AtrousOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
+  AtrousOutput out{RgbPlane(width, height), FloatPlane(width, height), FloatPlane(width, height)};
   if (out.color.data.empty()) return out;
 
-  const auto in = illumination_buffer(context, w, h),
-             surface = plane_buffer(context, w, h, TexelFormat::RGBA32F),
-             grad = plane_buffer(context, w, h, TexelFormat::RG32F),
-             filtered = illumination_buffer(context, w, h),
-             prefiltered = plane_buffer(context, w, h, TexelFormat::RG32F);
+  const auto in = illumination_buffer(context, width, height),
+             surface = plane_buffer(context, width, height, TexelFormat::RGBA32F),
+             grad = plane_buffer(context, width, height, TexelFormat::RG32F),
+             filtered = illumination_buffer(context, width, height),
+             prefiltered = plane_buffer(context, width, height, TexelFormat::RG32F);
   for (const int stream : {kDirectStream, kIndirectStream}) pack_illumination(stream, color, &variance, *in);
   pack_surface(s, *surface);
   pack_vec2(s.depth_grad, *grad);
 
-  const AtrousPush push{uint32_t(w),    uint32_t(h),    level, params.sigma_z, params.sigma_n,
-                        params.sigma_l, params.epsilon, 1u};
+  const AtrousPush push = atrous_push(uint32_t(width), uint32_t(height), level, params, true);
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
@@ -43,9 +42,9 @@ AtrousOutput atrous_level_vulkan(VulkanContext& context, const RgbPlane& color, 
       },
       ms);
 
-  out.color = unpack_illumination(*filtered, w, h, kDirectStream);
-  out.variance = unpack_variance(*filtered, w, h, kDirectStream);
-  out.prefiltered_variance = unpack_channel(*prefiltered, w, h, 2, 0);
+  out.color = unpack_illumination(*filtered, width, height, kDirectStream);
+  out.variance = unpack_variance(*filtered, width, height, kDirectStream);
+  out.prefiltered_variance = unpack_channel(*prefiltered, width, height, 2, 0);
   return out;
 }
 

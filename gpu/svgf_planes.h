@@ -8,7 +8,7 @@
 
 #include "filters/image.h"
 #include "filters/svgf/planes_shared.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 #include "gpu/compute.h"
 
 #include <memory>

@@ -9,7 +9,7 @@
 
 #include "filters/image.h"
 #include "filters/svgf/svgf_params.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 #include "filters/svgf/temporal.h"
 #include "gpu/vulkan_context.h"
 

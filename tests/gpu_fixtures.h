@@ -5,7 +5,7 @@
 
 #include "eval/frame_diff.h"
 #include "filters/image.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/vulkan_context.h"
 #include "test_skip.h"

@@ -1,7 +1,7 @@
 // Shared fixtures of the SVGF pass tests.
 #pragma once
 
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 
 namespace rtdr {
 

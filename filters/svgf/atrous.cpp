@@ -105,14 +105,14 @@ std::string tap_label(int dx, int dy) { return "tap (" + std::to_string(dx) + ",
 }  // namespace
 
 AtrousPixel atrous_pixel(const RgbPlane& color, const FloatPlane& variance, const FloatPlane& prefiltered_variance,
-                         const SurfacePlanes& s, int level, const SvgfParams& p, int x, int y, Probe* probe) {
+                         const SurfacePlanes& s, int level, const SvgfParams& params, int x, int y, Probe* probe) {
   note(probe, "level i", float(level), "[SVGF17 Sec. 4.3]");
   // No surface, nothing to compare with: the input passes through.
   if (!s.covered(x, y)) {
     note(probe, "no surface: passed through", 1.0f);
     return {color.at(x, y), variance.at(x, y)};
   }
-  const AtrousKernel kernel = atrous_kernel(p.kernel_size);
+  const AtrousKernel kernel = atrous_kernel(params.kernel_size);
   const int step = 1 << level;  // 2^i: the taps' spacing at level i
   note(probe, "step 2^i", float(step), "[SVGF17 Sec. 4.3]");
   const Centre centre = read_centre(color, prefiltered_variance, s, x, y, probe);
@@ -129,9 +129,9 @@ AtrousPixel atrous_pixel(const RgbPlane& color, const FloatPlane& variance, cons
       // No surface at q: nothing to filter there.
       if (!s.covered(qx, qy)) { note(probe, "skipped: no surface", 1.0f); continue; }
       const float h = kernel.h[k + kernel.radius] * kernel.h[j + kernel.radius];  // h(q) = h(dx) h(dy)
-      note(probe, "h(q)", h, p.kernel_size == 5 ? "[SVGF17 Eq. 1] B3 spline" : "[ASVGF18 Sec. 4] 3x3 box");
+      note(probe, "h(q)", h, params.kernel_size == 5 ? "[SVGF17 Eq. 1] B3 spline" : "[ASVGF18 Sec. 4] 3x3 box");
       // w(p, q) [SVGF17 Eq. 2]; 1 at the centre tap, where every edge-stopping weight is 1 (see the banner).
-      const float w = (k == 0 && j == 0) ? centre_weight(probe) : tap_weight(centre, color, s, p, qx, qy, probe);
+      const float w = (k == 0 && j == 0) ? centre_weight(probe) : tap_weight(centre, color, s, params, qx, qy, probe);
       note(probe, "w", w, "[SVGF17 Eq. 2]");
       note(probe, "h w", h * w, "[SVGF17 Eq. 1]");
       const float var_q = variance.at(qx, qy);
@@ -154,13 +154,13 @@ AtrousPixel atrous_pixel(const RgbPlane& color, const FloatPlane& variance, cons
 }
 
 AtrousOutput atrous_level(const RgbPlane& color, const FloatPlane& variance, const SurfacePlanes& s, int level,
-                          const SvgfParams& p) {
-  atrous_kernel(p.kernel_size);  // throws on a bad kernel_size here, before the rows run in parallel
+                          const SvgfParams& params) {
+  atrous_kernel(params.kernel_size);  // throws on a bad kernel_size here, before the rows run in parallel
   AtrousOutput out{RgbPlane(color.width, color.height), FloatPlane(color.width, color.height),
                    prefilter_variance(variance)};  // g3x3(Var(c_i)), steering w_l [SVGF17 Eq. 5]
   parallel_rows(color.height, [&](int y) {
     for (int x = 0; x < color.width; ++x) {
-      const AtrousPixel r = atrous_pixel(color, variance, out.prefiltered_variance, s, level, p, x, y);
+      const AtrousPixel r = atrous_pixel(color, variance, out.prefiltered_variance, s, level, params, x, y);
       out.color.at(x, y) = r.color;
       out.variance.at(x, y) = r.variance;
     }

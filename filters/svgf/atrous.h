@@ -8,7 +8,8 @@
 
 #include "filters/image.h"
 #include "filters/probe.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
+#include "filters/svgf/svgf_params.h"
 
 namespace rtdr {
 
@@ -37,11 +38,11 @@ struct AtrousOutput {
 // (filters/svgf/prefilter.h). Taps outside the image and taps without a surface are skipped; a pixel without a
 // surface returns its input. With a probe attached, every term of every tap is recorded.
 AtrousPixel atrous_pixel(const RgbPlane& color, const FloatPlane& variance, const FloatPlane& prefiltered_variance,
-                         const SurfacePlanes& s, int level, const SvgfParams& p, int x, int y,
+                         const SurfacePlanes& s, int level, const SvgfParams& params, int x, int y,
                          Probe* probe = nullptr);
 
 // One level over the whole frame: prefilters the variance, then runs atrous_pixel on every pixel.
 AtrousOutput atrous_level(const RgbPlane& color, const FloatPlane& variance, const SurfacePlanes& s, int level,
-                          const SvgfParams& p);
+                          const SvgfParams& params);
 
 }  // namespace rtdr

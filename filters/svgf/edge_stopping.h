@@ -3,7 +3,7 @@
 // (for epsilon > 0 and n_p of unit length in exact arithmetic; see filters/svgf/atrous.cpp for how the
 // a-trous treats the centre tap). The a-trous (filters/svgf/atrous.cpp) multiplies them [SVGF17 Eq. 2];
 // the spatial variance fallback [SVGF17 Sec. 4.2] uses the depth and normal weights.
-// Inputs: G-buffer values at p and q (svgf_shared.h), the parameters of svgf_params.h. Outputs: one float.
+// Inputs: G-buffer values at p and q (filters/surface_planes.h), the parameters of svgf_params.h. Outputs: one float.
 #pragma once
 
 #include <glm/glm.hpp>

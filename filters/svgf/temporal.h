@@ -26,7 +26,7 @@
 #include "filters/image.h"
 #include "filters/probe.h"
 #include "filters/svgf/svgf_params.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 
 #include <glm/glm.hpp>
 

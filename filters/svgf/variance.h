@@ -27,7 +27,7 @@
 #include "filters/image.h"
 #include "filters/probe.h"
 #include "filters/svgf/svgf_params.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 #include "filters/svgf/temporal.h"
 #include "filters/svgf/variance_shared.h"  // kVarianceSpatialRadius, written once for C++ and GLSL
 

@@ -1,4 +1,5 @@
-#include "filters/svgf/svgf_shared.h"
+// SurfacePlanes from a frame's layers. See surface_planes.h.
+#include "filters/surface_planes.h"
 
 namespace rtdr {
 

@@ -1,9 +1,8 @@
-// What every SVGF pass shares: the G-buffer planes the consistency tests and edge-stopping functions read.
-// The parameters are in svgf_params.h; the passes, in order, are listed in filters/svgf/README.md.
+// The G-buffer planes the filters read: what SVGF's consistency tests and edge-stopping functions compare, and
+// what EAW and TAA read too. (C++ only: a *_shared.h file is one that C++ and GLSL both include.)
 #pragma once
 
 #include "filters/image.h"
-#include "filters/svgf/svgf_params.h"
 
 namespace rtdr {
 

@@ -4,8 +4,10 @@
 // (docs/buffers.md), the colour and the display. Each back end keeps its own history, as `rtdr filter` would, so a
 // frame's differences include what the earlier frames' differences left in the histories.
 //
-// Printed: one row per channel, its worst absolute and relative difference over the frames, each with the frame,
-// the pixel and the two values there. --csv writes one row per frame and channel. --max-rel-error makes the
+// Printed: one row per channel, in the pipeline's order (the outputs, then each pass's layers as filters/passes.h
+// declares them), with the pass that writes it and its worst absolute and relative difference over the frames,
+// each with the frame, the pixel and the two values there. A back end that leaves out a declared layer is an
+// error. --csv writes one row per frame and channel. --max-rel-error makes the
 // command fail (exit 1, after the report) when any channel's relative difference exceeds it: a port check for
 // scripts. The bounds the tests hold the ports to, and why, are in tests/gpu_svgf_test.cpp.
 #include "app/backend.h"
@@ -16,6 +18,7 @@
 #include "core/exr_io.h"
 #include "eval/frame_diff.h"
 #include "filters/method.h"
+#include "filters/passes.h"
 
 #include <cstdio>
 #include <map>
@@ -76,11 +79,25 @@ void run_compare(const CompareOptions& o) {
   std::ostringstream csv;
   csv << "frame,channel,max_abs,abs_x,abs_y,abs_cpu,abs_vulkan,max_rel,rel_x,rel_y,rel_cpu,rel_vulkan\n";
   csv.precision(9);
+  // Every channel both back ends must write: the outputs, then the dump layers their passes declare.
+  std::vector<std::string> channels;
+  for (const LayerDecl* layer : {&layers::kColor, &layers::kDisplay})
+    for (std::string& c : layer_channels(*layer)) channels.push_back(std::move(c));
+  for (std::string& c : golden.method->dump_channels()) channels.push_back(std::move(c));
+  const auto require_declared = [&](const Frame& frame, const char* backend) {
+    for (const std::string& channel : channels)
+      if (!frame.has(channel))
+        throw Error(std::string("the ") + backend + " back end did not write '" + channel + "', which pass " +
+                    pass_writing(channel) + " declares (filters/passes.h)");
+  };
+
   std::map<std::string, Worst> worst_abs, worst_rel;
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
     const Frame reference = filter_with_dump(*golden.method, in);
     const Frame test = filter_with_dump(*port.method, in);
+    require_declared(reference, "cpu");
+    require_declared(test, "vulkan");
     for (const ChannelDiff& d : diff_channels(test, reference, o.rel_floor)) {
       if (keep_worst(worst_abs[d.channel].error, d.abs)) worst_abs[d.channel].frame = f.index;
       if (keep_worst(worst_rel[d.channel].error, d.rel)) worst_rel[d.channel].frame = f.index;
@@ -90,15 +107,17 @@ void run_compare(const CompareOptions& o) {
     }
   }
 
-  std::printf("%-42s %10s %-18s %13s %13s %10s %s\n", "channel", "max abs", "frame (x, y)", "cpu", "vulkan",
-              "max rel", "frame (x, y)");
+  std::printf("%-42s %-9s %10s %-18s %13s %13s %10s %s\n", "channel", "pass", "max abs", "frame (x, y)", "cpu",
+              "vulkan", "max rel", "frame (x, y)");
   const Worst* beyond = nullptr;  // the worst channel beyond --max-rel-error
   std::string beyond_channel;
   int channels_beyond = 0;
-  for (const auto& [channel, a] : worst_abs) {
+  for (const std::string& channel : channels) {
+    const Worst& a = worst_abs[channel];
     const Worst& r = worst_rel[channel];
-    std::printf("%-42s %10.3g %-18s %13s %13s %10.3g %s\n", channel.c_str(), a.error.error, where(a).c_str(),
-                value(a, a.error.reference).c_str(), value(a, a.error.test).c_str(), r.error.error, where(r).c_str());
+    std::printf("%-42s %-9s %10.3g %-18s %13s %13s %10.3g %s\n", channel.c_str(), pass_writing(channel).c_str(),
+                a.error.error, where(a).c_str(), value(a, a.error.reference).c_str(), value(a, a.error.test).c_str(),
+                r.error.error, where(r).c_str());
     if (o.max_rel_error && r.error.error > *o.max_rel_error) {
       ++channels_beyond;
       if (!beyond || r.error.error > beyond->error.error) {

@@ -4,6 +4,7 @@
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
+#include "filters/passes.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exr_io.h"
@@ -115,8 +116,15 @@ Command add_probe_command(CLI::App& app) {
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--frame", o->frame, "frame index (earlier frames are filtered first, for history)")->required();
   sub->add_option("--pixel", o->pixel, "X,Y")->required();
-  sub->add_option("--pass", o->pass, "temporal, variance, prefilter, atrous, eaw, modulate, tonemap, taa")
-      ->capture_default_str();
+  // The passes, from their declarations (filters/passes.h): the names for --pass, and what each prints below.
+  std::string names, passes = "Passes (the method runs some of them; rtdr probe says which when asked for another):";
+  for (const PassDecl& pass : filter_passes()) {
+    names += (names.empty() ? "" : ", ") + std::string(pass.name);
+    passes += "\n  " + std::string(pass.name) + " " + std::string(pass.cite) + " (" + std::string(pass.golden) +
+              "): " + std::string(pass.probe);
+  }
+  sub->add_option("--pass", o->pass, names)->capture_default_str();
+  sub->footer(passes);
   sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes)")->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");

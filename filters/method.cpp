@@ -52,23 +52,6 @@ std::vector<std::string> method_names() {
   return names;
 }
 
-std::string pass_writing(const std::string& channel) {
-  // Output channels, then the dump's (docs/buffers.md): filter.tonemapped.*, filter.<stream>.<buffer>...
-  const auto starts = [&](const char* prefix) { return channel.rfind(prefix, 0) == 0; };
-  if (starts("color.")) return "modulate";
-  if (starts("display.")) return "tonemap, then taa";
-  if (starts("filter.tonemapped.")) return "tonemap";
-  const size_t dot = channel.find('.', 7);  // past "filter."
-  if (!starts("filter.") || dot == std::string::npos) return "?";
-  const std::string buffer = channel.substr(dot + 1);
-  const auto in = [&](const char* prefix) { return buffer.rfind(prefix, 0) == 0; };
-  if (in("temporal.") || in("moments.") || in("history_length")) return "temporal";
-  if (in("variance")) return "variance";
-  if (in("level") && buffer.find(".prefiltered_variance") != std::string::npos) return "prefilter";
-  if (in("level") || in("filtered.")) return "atrous";
-  return "?";
-}
-
 SvgfOptions method_options(const std::string& name, const SvgfParams& params) {
   for (const MethodEntry& m : registry()) {
     if (name != m.name) continue;

@@ -39,17 +39,19 @@ class Method {
   virtual ~Method() = default;
   virtual std::string name() const = 0;
   // Filters the next frame of the sequence. When `dump` is given, every intermediate buffer is added to it
-  // as layers named in docs/buffers.md ("Filter passes").
+  // as the layers its passes declare (filters/passes.h, docs/buffers.md "Filter passes").
   virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
   // Forgets all history (the next frame is treated as the first).
   virtual void reset() = 0;
   // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
   // probe attached. `stream` is "direct" or "indirect" for per-stream passes, `level` the a-trous level.
   virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
-  // The passes probe() accepts.
+  // The passes probe() accepts: those the method runs, in order (filters/passes.h declares each).
   virtual std::vector<std::string> probe_passes() const = 0;
   // Every channel filter() reads from its input frame.
   virtual InputChannels inputs() const = 0;
+  // Every channel filter() adds to `dump`: the dump layers of the passes it runs (filters/passes.h).
+  virtual std::vector<std::string> dump_channels() const = 0;
   const PassTimes& pass_times() const { return times_; }
 
  protected:
@@ -67,8 +69,5 @@ std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& p
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const SvgfParams& params = {});
 std::vector<std::string> method_names();
-// The pass that writes output or dump channel `channel` ("color.R" -> "modulate", "filter.direct.level2.R" ->
-// "atrous"), for error messages; "?" for a channel no pass writes.
-std::string pass_writing(const std::string& channel);
 
 }  // namespace rtdr

@@ -33,6 +33,41 @@ std::vector<uint32_t> load_port(const VulkanContext& context, const std::string&
 
 }  // namespace
 
+TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                           const SvgfParams& params) {
+  const bool has_history = prev_width > 0 && prev_height > 0;
+  return TemporalPush{.width = width,
+                      .height = height,
+                      .prev_width = prev_width,
+                      .prev_height = prev_height,
+                      .has_history = has_history ? 1u : 0u,
+                      .max_history = uint32_t(params.max_history),
+                      .alpha = params.alpha,
+                      .alpha_moments = params.alpha_moments,
+                      .temporal_depth_relative = params.temporal_depth_relative,
+                      .temporal_normal_cosine = params.temporal_normal_cosine};
+}
+
+VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params) {
+  return VariancePush{.width = width,
+                      .height = height,
+                      .variance_min_history = uint32_t(params.variance_min_history),
+                      .sigma_z = params.sigma_z,
+                      .sigma_n = params.sigma_n,
+                      .epsilon = params.epsilon};
+}
+
+AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfParams& params, bool keep_prefiltered) {
+  return AtrousPush{.width = width,
+                    .height = height,
+                    .level = level,
+                    .sigma_z = params.sigma_z,
+                    .sigma_n = params.sigma_n,
+                    .sigma_l = params.sigma_l,
+                    .epsilon = params.epsilon,
+                    .keep_prefiltered = keep_prefiltered ? 1u : 0u};
+}
+
 SvgfShaders::SvgfShaders(VulkanContext& context)
     : group_width_(context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX),
       group_height_(context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY),

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "filters/svgf/atrous_shared.h"
+#include "filters/svgf/svgf_params.h"
 #include "filters/svgf/modulate_shared.h"
 #include "filters/svgf/temporal_shared.h"
 #include "filters/svgf/tonemap_shared.h"
@@ -40,6 +41,15 @@ struct HistoryPlanes {
 };
 
 class SvgfShaders;
+
+// The push constants of the three shaders that read SVGF's parameters, filled field by field from the golden
+// pass's SvgfParams: one function per block, which the pipeline (svgf_vulkan.cpp) and the per-pass ports
+// (temporal_gpu.cpp, variance_gpu.cpp, atrous_gpu.cpp) all call. `width` x `height` is the frame, `prev_width` x
+// `prev_height` the previous frame's (0 x 0 without history).
+TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                           const SvgfParams& params);
+VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params);
+AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfParams& params, bool keep_prefiltered);
 
 // Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
 // then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).

@@ -2,11 +2,13 @@
 #include "gpu/svgf_vulkan.h"
 
 #include "core/error.h"
+#include "filters/passes.h"
 #include "gpu/svgf_planes.h"
 
 #include <chrono>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rtdr {
@@ -19,8 +21,8 @@ using PlanePtr = std::unique_ptr<GpuBuffer>;
 // of the results into readback memory.
 uint32_t commands_per_frame(const SvgfParams& p) { return 5 + uint32_t(p.atrous_levels) + 2; }
 
-// The golden dump's layer prefix of each stream (SvgfFilter::filter, docs/buffers.md).
-std::string stream_layer(int stream) { return stream == kDirectStream ? "filter.direct." : "filter.indirect."; }
+// The name of each stream in the dump's layer names (filters/passes.h).
+std::string_view stream_name(int stream) { return stream == kDirectStream ? "direct" : "indirect"; }
 
 }  // namespace
 
@@ -155,59 +157,56 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   const bool history_from_levels = p.history_level < p.atrous_levels;
   const GpuBuffer& temporal_out = history_from_levels ? *b.temporal : *b.history[cur];
   shaders_.temporal(batch_, *b.noisy, g, history, temporal_out, Buffers::streams(b.moments[cur]),
-                    TemporalPush{uw, uh, has_history ? uw : 0u, has_history ? uh : 0u, has_history ? 1u : 0u,
-                                 uint32_t(p.max_history), p.alpha, p.alpha_moments, p.temporal_depth_relative,
-                                 p.temporal_normal_cosine});
+                    temporal_push(uw, uh, has_history ? uw : 0u, has_history ? uh : 0u, p));
   if (d) {
     d->copy(batch_, temporal_out, [w, h](const GpuBuffer& r, Frame& f) {
       for (const int s : {kDirectStream, kIndirectStream})
-        set_rgb_plane(f, stream_layer(s) + "temporal", unpack_illumination(r, w, h, s));
+        dump_layer(&f, layers::kTemporal, stream_name(s), -1, unpack_illumination(r, w, h, s));
     });
     for (const int s : {kDirectStream, kIndirectStream})
       d->copy(batch_, *b.moments[cur][s], [w, h, s](const GpuBuffer& r, Frame& f) {  // (mu1', mu2', n, 0)
-        set_float_plane(f, stream_layer(s) + "moments.mu1", unpack_channel(r, w, h, 4, 0));
-        set_float_plane(f, stream_layer(s) + "moments.mu2", unpack_channel(r, w, h, 4, 1));
-        set_float_plane(f, stream_layer(s) + "history_length", unpack_channel(r, w, h, 4, 2));
+        dump_layer(&f, layers::kMoment1, stream_name(s), -1, unpack_channel(r, w, h, 4, 0));
+        dump_layer(&f, layers::kMoment2, stream_name(s), -1, unpack_channel(r, w, h, 4, 1));
+        dump_layer(&f, layers::kHistoryLength, stream_name(s), -1, unpack_channel(r, w, h, 4, 2));
       });
   }
   shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, *b.variance,
-                    VariancePush{uw, uh, uint32_t(p.variance_min_history), p.sigma_z, p.sigma_n, p.epsilon});
+                    variance_push(uw, uh, p));
   if (d)
     d->copy(batch_, *b.variance, [w, h](const GpuBuffer& r, Frame& f) {
       for (const int s : {kDirectStream, kIndirectStream})
-        set_float_plane(f, stream_layer(s) + "variance", unpack_variance(r, w, h, s));
+        dump_layer(&f, layers::kVariance, stream_name(s), -1, unpack_variance(r, w, h, s));
     });
   const GpuBuffer* filtered = p.atrous_levels > 0 ? b.variance.get() : &temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
     const GpuBuffer* out = level == p.history_level ? b.history[cur].get() : b.level[level & 1].get();
     shaders_.atrous(batch_, *filtered, g, *out, *b.prefiltered,
-                    AtrousPush{uw, uh, level, p.sigma_z, p.sigma_n, p.sigma_l, p.epsilon, d ? 1u : 0u},
+                    atrous_push(uw, uh, level, p, d != nullptr),
                     p.kernel_size);
     filtered = out;
     if (d) {
-      const std::string l = "level" + std::to_string(level);
-      d->copy(batch_, *out, [w, h, l](const GpuBuffer& r, Frame& f) {
+      d->copy(batch_, *out, [w, h, level](const GpuBuffer& r, Frame& f) {
         for (const int s : {kDirectStream, kIndirectStream}) {
-          set_rgb_plane(f, stream_layer(s) + l, unpack_illumination(r, w, h, s));
-          set_float_plane(f, stream_layer(s) + l + ".variance", unpack_variance(r, w, h, s));
+          dump_layer(&f, layers::kLevel, stream_name(s), level, unpack_illumination(r, w, h, s));
+          dump_layer(&f, layers::kLevelVariance, stream_name(s), level, unpack_variance(r, w, h, s));
         }
       });
-      d->copy(batch_, *b.prefiltered, [w, h, l](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
+      d->copy(batch_, *b.prefiltered, [w, h, level](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
         for (const int s : {kDirectStream, kIndirectStream})
-          set_float_plane(f, stream_layer(s) + l + ".prefiltered_variance", unpack_channel(r, w, h, 2, s));
+          dump_layer(&f, layers::kLevelPrefiltered, stream_name(s), level, unpack_channel(r, w, h, 2, s));
       });
     }
   }
   if (d)
     d->copy(batch_, *filtered, [w, h](const GpuBuffer& r, Frame& f) {
       for (const int s : {kDirectStream, kIndirectStream})
-        set_rgb_plane(f, stream_layer(s) + "filtered", unpack_illumination(r, w, h, s));
+        dump_layer(&f, layers::kFiltered, stream_name(s), -1, unpack_illumination(r, w, h, s));
     });
-  shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{uw, uh});
-  shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{uw, uh, options_.tonemap.exposure});
+  shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{.width = uw, .height = uh});
+  shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{.width = uw, .height = uh, .exposure = options_.tonemap.exposure});
   if (d)
     d->copy(batch_, *b.tonemapped, [w, h](const GpuBuffer& r, Frame& f) {
-      set_rgb_plane(f, "filter.tonemapped", unpack_rgb(r, w, h));
+      dump_layer(&f, layers::kTonemapped, {}, -1, unpack_rgb(r, w, h));
     });
   // Without a TAA history the TAA shader returns its input: the first frame's display is the tone-mapped colour.
   const TaaParams& t = options_.taa_params;
@@ -231,8 +230,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   const auto t2 = std::chrono::steady_clock::now();
   Frame out(w, h);
   out.source = in.source;
-  set_rgb_plane(out, "color", unpack_rgb(*b.colour_readback, w, h));
-  set_rgb_plane(out, "display", unpack_rgb(*b.display_readback, w, h));
+  set_rgb_plane(out, layer_name(layers::kColor), unpack_rgb(*b.colour_readback, w, h));
+  set_rgb_plane(out, layer_name(layers::kDisplay), unpack_rgb(*b.display_readback, w, h));
   const auto t3 = std::chrono::steady_clock::now();
   // "transfer": the copies' device time and the host's packing and unpacking.
   times_[kTransferPass] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();

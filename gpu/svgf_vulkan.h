@@ -39,6 +39,7 @@ class SvgfVulkan : public Method {
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override { return {}; }
   InputChannels inputs() const override { return svgf_input_channels(options_); }
+  std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
   // The last frame's commands one by one, in order, with their device times in ms (empty without timestamps):
   // what pass_times() sums per pass, e.g. each a-trous level on its own.
   const std::vector<std::pair<std::string, double>>& command_times() const { return batch_.times(); }

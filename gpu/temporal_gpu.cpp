@@ -68,16 +68,7 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F),
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F)};
 
-  const TemporalPush push{uint32_t(w),
-                          uint32_t(h),
-                          uint32_t(hw),
-                          uint32_t(hh),
-                          has_history ? 1u : 0u,
-                          uint32_t(params.max_history),
-                          params.alpha,
-                          params.alpha_moments,
-                          params.temporal_depth_relative,
-                          params.temporal_normal_cosine};
+  const TemporalPush push = temporal_push(uint32_t(w), uint32_t(h), uint32_t(hw), uint32_t(hh), params);
   // Both streams hold the same values; the indirect stream's outputs are not read back.
   run_pass(
       context,

@@ -20,7 +20,8 @@ RgbPlane tonemap_vulkan(VulkanContext& context, const RgbPlane& colour, const To
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
         shaders.tonemap(batch, *colour_buffer, *display_buffer,
-                        TonemapPush{uint32_t(colour.width), uint32_t(colour.height), params.exposure});
+                        TonemapPush{.width = uint32_t(colour.width), .height = uint32_t(colour.height),
+                                    .exposure = params.exposure});
       },
       ms);
   return unpack_rgb(*display_buffer, colour.width, colour.height);

@@ -34,8 +34,7 @@ FloatPlane variance_vulkan(VulkanContext& context, const TemporalOutput& t, cons
   pack_surface(cur, *surface);
   pack_vec2(cur.depth_grad, *grad);
 
-  const VariancePush push{uint32_t(w),    uint32_t(h),    uint32_t(params.variance_min_history),
-                          params.sigma_z, params.sigma_n, params.epsilon};
+  const VariancePush push = variance_push(uint32_t(w), uint32_t(h), params);
   // Both streams hold the same values; the indirect stream's output is not read back.
   run_pass(
       context,

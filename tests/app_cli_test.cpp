@@ -29,7 +29,7 @@ std::string read_file(const fs::path& p) { return read_text(p); }
 size_t count_files(const fs::path& dir) { return files_in(dir).size(); }
 
 // The channel names in the first column of the tables of docs/buffers.md that describe rendered frames
-// (everything before "# Filter outputs"): each `name` in the cell, where
+// (everything before "## Filter passes"): each `name` in the cell, where
 // the last part may list alternatives, `path.light.X/Y/Z` meaning path.light.X, path.light.Y, path.light.Z.
 std::set<std::string> documented_channels() {
   std::set<std::string> names;
@@ -37,7 +37,7 @@ std::set<std::string> documented_channels() {
   const std::regex row("^\\| (`[^|]+) \\|");
   const std::regex name("`([a-z.]+)\\.([A-Za-z/]+)`");
   for (std::string line; std::getline(doc, line);) {
-    if (line.rfind("# Filter outputs", 0) == 0) break;  // what follows is written by rtdr filter
+    if (line == "## Filter passes") break;  // what follows is written by rtdr filter
     std::smatch cell;
     if (!std::regex_search(line, cell, row)) continue;
     const std::string text = cell[1].str();

@@ -5,6 +5,7 @@
 // tests/gpu_svgf_test.cpp.
 #include "core/exr_io.h"
 #include "core/frame.h"
+#include "filters/method.h"
 #include "gpu/vulkan_context.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -54,24 +55,14 @@ std::set<std::string> channels(const rtdr::Frame& f) {
   return names;
 }
 
-// The layers --dump-passes adds for svgf with 5 a-trous levels (docs/buffers.md, "Filter passes").
+// The layers --dump-passes adds for svgf with its 5 a-trous levels, as its passes declare them
+// (filters/passes.h, docs/buffers.md "Filter passes"). Counted by hand: per stream, temporal (3 channels),
+// the two moments, the history length, the variance, per level 3 + 2, and filtered (3); then filter.tonemapped.
 std::set<std::string> dump_channels() {
-  std::set<std::string> names;
-  auto rgb = [&](const std::string& layer) {
-    for (const char* c : {".R", ".G", ".B"}) names.insert(layer + c);
-  };
-  for (const std::string s : {"direct", "indirect"}) {
-    const std::string p = "filter." + s + ".";
-    rgb(p + "temporal");
-    names.insert({p + "moments.mu1", p + "moments.mu2", p + "history_length", p + "variance"});
-    for (int i = 0; i < 5; ++i) {
-      const std::string l = p + "level" + std::to_string(i);
-      rgb(l);
-      names.insert({l + ".variance", l + ".prefiltered_variance"});
-    }
-    rgb(p + "filtered");
-  }
-  rgb("filter.tonemapped");
+  const std::vector<std::string> declared = rtdr::make_method("svgf")->dump_channels();
+  const std::set<std::string> names(declared.begin(), declared.end());
+  CHECK(names.size() == declared.size());
+  CHECK(names.size() == 2 * (3 + 2 + 1 + 1 + 5 * (3 + 2) + 3) + 3);
   return names;
 }
 

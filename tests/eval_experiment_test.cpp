@@ -34,6 +34,7 @@ class WithTransfer : public rtdr::Method {
   }
   std::vector<std::string> probe_passes() const override { return inner_->probe_passes(); }
   rtdr::InputChannels inputs() const override { return inner_->inputs(); }
+  std::vector<std::string> dump_channels() const override { return inner_->dump_channels(); }
 
  private:
   std::unique_ptr<rtdr::Method> inner_ = rtdr::make_method("none");

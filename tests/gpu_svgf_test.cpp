@@ -49,6 +49,7 @@
 #include "gpu/svgf_vulkan.h"
 
 #include "filters/image.h"
+#include "filters/passes.h"
 #include "scenes/catalog.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -240,6 +241,11 @@ TEST_CASE("the Vulkan pipeline's dump holds the golden dump's layers, within bou
 
     const std::vector<ChannelDiff> diffs = diff_channels(dump, expected_dump, kRelFloor);  // throws on other names
     CHECK(diffs.size() == expected_dump.float_channels().size());
+    // The port dumps exactly the layers the passes declare (filters/passes.h), as the golden pipeline does.
+    std::vector<std::string> declared = dumped.dump_channels(), channels;
+    for (const auto& [name, plane] : dump.float_channels()) channels.push_back(name);
+    std::sort(declared.begin(), declared.end());
+    CHECK(channels == declared);
     int asserted = 0;
     for (const ChannelDiff& d : diffs) {
       const auto ends_with = [&](const std::string& tail) {
@@ -262,28 +268,28 @@ TEST_CASE("the Vulkan pipeline's dump holds the golden dump's layers, within bou
     // 2 streams x (temporal, 5 levels, filtered) x RGB + mu1, mu2, n, and the tone-mapped RGB.
     CHECK(asserted == 2 * (7 * 3 + 3) + 3);
 
-    const RgbPlane colour = remodulate(rgb_plane(dump, "filter.direct.filtered"),
-                                       rgb_plane(dump, "filter.indirect.filtered"), rgb_plane(in, "albedo"),
-                                       rgb_plane(in, "emission"));
+    const RgbPlane colour = remodulate(rgb_plane(dump, layer_name(layers::kFiltered, "direct")),
+                                       rgb_plane(dump, layer_name(layers::kFiltered, "indirect")),
+                                       rgb_plane(in, "albedo"), rgb_plane(in, "emission"));
     const double any = std::numeric_limits<double>::infinity();  // the relative bound alone
     check_rgb_within(rgb_plane(out, "color"), colour, any, 1e-6);
-    check_rgb_within(rgb_plane(dump, "filter.tonemapped"), tonemap(rgb_plane(out, "color"), TonemapParams{}), any,
-                     1e-6);
-    for (const std::string stream : {"filter.direct.", "filter.indirect."}) {
-      std::string input = stream + "variance";
+    check_rgb_within(rgb_plane(dump, layer_name(layers::kTonemapped)), tonemap(rgb_plane(out, "color"), TonemapParams{}),
+                     any, 1e-6);
+    for (const std::string stream : {"direct", "indirect"}) {
+      std::string input = layer_name(layers::kVariance, stream);
       for (int level = 0; level < SvgfParams{}.atrous_levels; ++level) {
-        const std::string l = stream + "level" + std::to_string(level);
         const FloatPlane expected = prefilter_variance(dump.float_channel(input));
-        const FloatPlane& got = dump.float_channel(l + ".prefiltered_variance");
+        const std::string prefiltered = layer_name(layers::kLevelPrefiltered, stream, level);
+        const FloatPlane& got = dump.float_channel(prefiltered);
         double worst = 0.0;
         for (size_t i = 0; i < expected.data.size(); ++i)
           worst = std::max(worst, rel_difference(got.data[i], expected.data[i], 1e-3));
-        INFO(l << " prefiltered variance against the golden prefilter of " << input);
+        INFO(prefiltered << " against the golden prefilter of " << input);
         CHECK(worst <= 5e-5);
-        input = l + ".variance";
+        input = layer_name(layers::kLevelVariance, stream, level);
       }
-      CHECK(rgb_plane(dump, stream + "filtered").data ==
-            rgb_plane(dump, stream + "level" + std::to_string(SvgfParams{}.atrous_levels - 1)).data);
+      CHECK(rgb_plane(dump, layer_name(layers::kFiltered, stream)).data ==
+            rgb_plane(dump, layer_name(layers::kLevel, stream, SvgfParams{}.atrous_levels - 1)).data);
     }
   }
   check_no_validation_messages(*context);

@@ -96,25 +96,12 @@ double rmse(const RgbPlane& a, const RgbPlane& b) {
   return std::sqrt(sum / double(3 * a.data.size()));
 }
 
-// Every layer --dump-passes writes (docs/buffers.md, "Filter passes") for SVGF with `levels` a-trous levels.
-std::vector<std::string> svgf_dump_channels(int levels) {
-  std::vector<std::string> names;
-  auto rgb = [&](const std::string& layer) {
-    for (const char* c : {".R", ".G", ".B"}) names.push_back(layer + c);
-  };
-  for (const std::string s : {"direct", "indirect"}) {
-    const std::string p = "filter." + s + ".";
-    rgb(p + "temporal");
-    names.insert(names.end(), {p + "moments.mu1", p + "moments.mu2", p + "history_length", p + "variance"});
-    for (int i = 0; i < levels; ++i) {
-      const std::string l = p + "level" + std::to_string(i);
-      rgb(l);
-      names.insert(names.end(), {l + ".variance", l + ".prefiltered_variance"});
-    }
-    rgb(p + "filtered");
-  }
-  rgb("filter.tonemapped");
-  return names;
+// Every layer --dump-passes writes for method `name` with `params`, as its passes declare them
+// (filters/passes.h, docs/buffers.md "Filter passes"), sorted.
+std::vector<std::string> declared_dump(const std::string& name, const SvgfParams& params = {}) {
+  std::vector<std::string> channels = svgf_dump_channels(method_options(name, params));
+  std::sort(channels.begin(), channels.end());
+  return channels;
 }
 
 glm::vec3 dumped_rgb(const Frame& dump, const std::string& layer, int x, int y) {
@@ -235,9 +222,11 @@ TEST_CASE("dumps hold every documented layer and probes re-compute the dumped va
   // Every layer of docs/buffers.md's "Filter passes" table, and nothing else.
   std::vector<std::string> dumped;
   for (const auto& [name, plane] : dump.float_channels()) dumped.push_back(name);
-  std::vector<std::string> expected = svgf_dump_channels(params.atrous_levels);
-  std::sort(expected.begin(), expected.end());
+  const std::vector<std::string> expected = declared_dump("svgf", params);
   CHECK(dumped == expected);
+  // Counted by hand: per stream, temporal (3 channels), two moments, the history length, the variance, per level
+  // 3 + 2, and filtered (3); then filter.tonemapped (3).
+  CHECK(expected.size() == size_t(2 * (3 + 2 + 1 + 1 + params.atrous_levels * (3 + 2) + 3) + 3));
   for (const std::string& name : expected) {
     INFO(name);
     CHECK(dump.has(name));
@@ -299,6 +288,32 @@ TEST_CASE("dumps hold every documented layer and probes re-compute the dumped va
   CHECK_THROWS_AS(svgf->probe("atrous", 24, 13, "specular", 0), Error);
   CHECK_THROWS_AS(svgf->probe("atrous", 24, 13, "direct", params.atrous_levels), Error);
   CHECK_THROWS_AS(svgf->probe("atrous", 24, 13, "direct", -1), Error);
+}
+
+TEST_CASE("every method dumps exactly the layers its passes declare, and each can be probed") {
+  // The declarations (filters/passes.h) against what each method's filter() writes, with the counts by hand:
+  // per stream temporal 3 + moments 2 + history length 1, eaw 5 levels of 3 and filtered 3; filter.tonemapped 3.
+  const std::map<std::string, size_t> counts = {{"eaw", 2 * (6 + 5 * 3 + 3) + 3},
+                                                {"eaw-accum", 2 * (6 + 5 * 3 + 3) + 3},
+                                                {"accum", 2 * 6 + 3},
+                                                {"none", 2 * 6 + 3}};
+  for (const auto& [name, count] : counts) {
+    INFO("method " << name);
+    const std::unique_ptr<Method> method = make_method(name);
+    method->filter(rendered("cornell", 0, 32, 18));
+    Frame dump(32, 18);
+    method->filter(rendered("cornell", 1, 32, 18), &dump);
+    std::vector<std::string> dumped;
+    for (const auto& [channel, plane] : dump.float_channels()) dumped.push_back(channel);
+    CHECK(dumped == declared_dump(name));
+    CHECK(dumped.size() == count);
+    CHECK(method->dump_channels().size() == count);
+    // Every pass it runs can be probed on this (second) frame.
+    for (const std::string& pass : method->probe_passes()) {
+      INFO("pass " << pass);
+      CHECK_FALSE(method->probe(pass, 16, 9, "direct", 0).terms().empty());
+    }
+  }
 }
 
 TEST_CASE("a pass a method does not run cannot be probed, nor a frame never filtered") {

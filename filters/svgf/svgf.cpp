@@ -7,20 +7,13 @@
 #include "filters/svgf/prefilter.h"
 #include "filters/svgf/variance.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace rtdr {
-namespace {
 
-// Dump layer names: filter.<stream>.<buffer>[.<channel>], listed in docs/buffers.md ("Filter passes").
-void dump_rgb(Frame* dump, const std::string& layer, const RgbPlane& p) {
-  if (dump) set_rgb_plane(*dump, layer, p);
-}
-void dump_float(Frame* dump, const std::string& channel, const FloatPlane& p) {
-  if (dump) set_float_plane(*dump, channel, p);
-}
-
-}  // namespace
+// Every dump layer is named by its declaration in filters/passes.h (dump_layer), listed in docs/buffers.md.
+using namespace layers;
 
 SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) { validate(options_.svgf); }
 
@@ -54,17 +47,17 @@ const RgbPlane& SvgfFilter::Stream::filtered() const {
   return temporal.color;
 }
 
-const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& prefix) {
+const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name) {
   const SvgfParams& p = options_.svgf;
   s.noisy = std::move(noisy);
   // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
   //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
   s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
   time_pass("temporal", [&] { s.temporal = temporal_pass(s.noisy, surface_, s.seen_history, p); });
-  dump_rgb(dump, prefix + "temporal", s.temporal.color);
-  dump_float(dump, prefix + "moments.mu1", s.temporal.moment1);
-  dump_float(dump, prefix + "moments.mu2", s.temporal.moment2);
-  dump_float(dump, prefix + "history_length", s.temporal.length);
+  dump_layer(dump, kTemporal, name, -1, s.temporal.color);
+  dump_layer(dump, kMoment1, name, -1, s.temporal.moment1);
+  dump_layer(dump, kMoment2, name, -1, s.temporal.moment2);
+  dump_layer(dump, kHistoryLength, name, -1, s.temporal.length);
 
   // 2. The spatial filter, level by level: SVGF's variance-guided a-trous [Sec. 4.2-4.4] or EAW. Level i
   //    reads level i - 1's output (Stream::level_input_color).
@@ -73,15 +66,14 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
   int history_level = -1;  // which level's output becomes the colour history; -1: the temporal output
   if (options_.spatial == SpatialFilter::Atrous) {
     time_pass("variance", [&] { s.variance = variance_pass(s.temporal, surface_, p); });
-    dump_float(dump, prefix + "variance", s.variance);
+    dump_layer(dump, kVariance, name, -1, s.variance);
     for (int level = 0; level < p.atrous_levels; ++level) {
       time_pass("atrous", [&] {
         s.levels.push_back(atrous_level(s.level_input_color(level), s.level_input_variance(level), surface_, level, p));
       });
-      const std::string l = prefix + "level" + std::to_string(level);
-      dump_rgb(dump, l, s.levels.back().color);
-      dump_float(dump, l + ".variance", s.levels.back().variance);
-      dump_float(dump, l + ".prefiltered_variance", s.levels.back().prefiltered_variance);
+      dump_layer(dump, kLevel, name, level, s.levels.back().color);
+      dump_layer(dump, kLevelVariance, name, level, s.levels.back().variance);
+      dump_layer(dump, kLevelPrefiltered, name, level, s.levels.back().prefiltered_variance);
     }
     // The first level's output is fed back as the colour history [Sec. 4.3].
     if (p.history_level < p.atrous_levels) history_level = p.history_level;
@@ -90,11 +82,11 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
       time_pass("eaw", [&] {
         s.eaw_levels.push_back(eaw_level(s.level_input_color(level), position_, surface_, level, options_.eaw));
       });
-      dump_rgb(dump, prefix + "level" + std::to_string(level), s.eaw_levels.back());
+      dump_layer(dump, kLevel, name, level, s.eaw_levels.back());
     }
     if (options_.eaw.levels > 0) history_level = 0;
   }
-  dump_rgb(dump, prefix + "filtered", s.filtered());
+  if (options_.spatial != SpatialFilter::None) dump_layer(dump, kFiltered, name, -1, s.filtered());
 
   // 3. What the next frame reads: the colour history, the moments, the history length, this G-buffer.
   const RgbPlane& history = history_level < 0 ? s.temporal.color
@@ -131,8 +123,8 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
 
   // The two streams are filtered separately [SVGF17 Sec. 3].
-  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "filter.direct.");
-  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), dump, "filter.indirect.");
+  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "direct");
+  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), dump, "indirect");
   // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
   time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
   time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
@@ -142,12 +134,12 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   else
     display_ = tonemapped_;
   taa_history_ = display_;
-  dump_rgb(dump, "filter.tonemapped", tonemapped_);
+  dump_layer(dump, kTonemapped, {}, -1, tonemapped_);
 
   Frame out(in.width(), in.height());
   out.source = in.source;
-  set_rgb_plane(out, "color", color_);
-  set_rgb_plane(out, "display", display_);
+  set_rgb_plane(out, layer_name(kColor), color_);
+  set_rgb_plane(out, layer_name(kDisplay), display_);
   return out;
 }
 
@@ -157,51 +149,72 @@ const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
   throw Error("--stream '" + name + "' is not direct or indirect");
 }
 
-std::vector<std::string> SvgfFilter::probe_passes() const {
-  std::vector<std::string> passes = {"temporal"};
-  if (options_.spatial == SpatialFilter::Atrous) passes.insert(passes.end(), {"variance", "prefilter", "atrous"});
-  if (options_.spatial == SpatialFilter::Eaw) passes.push_back("eaw");
-  passes.insert(passes.end(), {"modulate", "tonemap"});
-  if (options_.taa) passes.push_back("taa");
+std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
+  std::vector<const PassDecl*> passes = {&find_pass("temporal")};
+  if (options.spatial == SpatialFilter::Atrous)
+    for (const char* name : {"variance", "prefilter", "atrous"}) passes.push_back(&find_pass(name));
+  if (options.spatial == SpatialFilter::Eaw) passes.push_back(&find_pass("eaw"));
+  passes.push_back(&find_pass("modulate"));
+  passes.push_back(&find_pass("tonemap"));
+  if (options.taa) passes.push_back(&find_pass("taa"));
   return passes;
+}
+
+std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) {
+  const int levels = options.spatial == SpatialFilter::Atrous ? options.svgf.atrous_levels
+                     : options.spatial == SpatialFilter::Eaw  ? options.eaw.levels
+                                                              : 0;
+  std::vector<std::string> channels;
+  for (const PassDecl* pass : svgf_passes(options))
+    for (const LayerDecl* layer : pass->writes)
+      if (layer->use == LayerUse::Dump)
+        for (std::string& channel : expand_layer(*layer, levels))
+          if (std::find(channels.begin(), channels.end(), channel) == channels.end())
+            channels.push_back(std::move(channel));
+  return channels;
+}
+
+std::vector<std::string> SvgfFilter::probe_passes() const {
+  std::vector<std::string> names;
+  for (const PassDecl* pass : svgf_passes(options_)) names.emplace_back(pass->name);
+  return names;
 }
 
 Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string& stream_name, int level) const {
   if (!inside(surface_.depth, x, y))
     throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
                 std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
-  const SvgfParams& p = options_.svgf;
-  Probe probe;
+  const std::vector<std::string> runs = probe_passes();
+  if (std::find(runs.begin(), runs.end(), pass) == runs.end() ||
+      (pass == "taa" && seen_taa_history_.width != surface_.width())) {  // TAA's first frame passes its input on
+    std::string known;
+    for (const std::string& name : runs) known += (known.empty() ? "" : ", ") + name;
+    throw Error("--pass '" + pass + "' cannot be probed for method " + options_.name + " on this frame (passes: " +
+                known + ")");
+  }
   const Stream& s = stream(stream_name);
-  auto need_level = [&](size_t count) {
+  if (find_pass(pass).scope == PassScope::StreamLevel) {
+    const size_t count = pass == "eaw" ? s.eaw_levels.size() : s.levels.size();
     if (level < 0 || size_t(level) >= count)
       throw Error("--level " + std::to_string(level) + " is not one of the " + std::to_string(count) + " levels run");
-  };
-  if (pass == "temporal") {
-    temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe);
-  } else if (pass == "variance" && options_.spatial == SpatialFilter::Atrous) {
-    variance_pixel(s.temporal, surface_, p, x, y, &probe);
-  } else if (pass == "prefilter" && options_.spatial == SpatialFilter::Atrous) {
-    need_level(s.levels.size());
-    prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
-  } else if (pass == "atrous" && options_.spatial == SpatialFilter::Atrous) {
-    need_level(s.levels.size());
+  }
+
+  // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
+  const SvgfParams& p = options_.svgf;
+  Probe probe;
+  if (pass == "temporal") temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe);
+  if (pass == "variance") variance_pixel(s.temporal, surface_, p, x, y, &probe);
+  if (pass == "prefilter") prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
+  if (pass == "atrous")
     atrous_pixel(s.level_input_color(level), s.level_input_variance(level), s.levels[size_t(level)].prefiltered_variance,
                  surface_, level, p, x, y, &probe);
-  } else if (pass == "eaw" && options_.spatial == SpatialFilter::Eaw) {
-    need_level(s.eaw_levels.size());
-    eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, &probe);
-  } else if (pass == "modulate") {
-    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y), &probe);
-  } else if (pass == "tonemap") {
-    tonemap_pixel(color_.at(x, y), options_.tonemap, &probe);
-  } else if (pass == "taa" && options_.taa && seen_taa_history_.width == surface_.width()) {
+  if (pass == "eaw") eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, &probe);
+  if (pass == "modulate")
+    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y),
+                     &probe);
+  if (pass == "tonemap") tonemap_pixel(color_.at(x, y), options_.tonemap, &probe);
+  if (pass == "taa")
     taa_pixel(tonemapped_, seen_taa_history_, surface_.motion, x, y, options_.taa_params, TaaJitter{}, &probe);
-  } else {
-    std::string known;
-    for (const std::string& name : probe_passes()) known += (known.empty() ? "" : ", ") + name;
-    throw Error("--pass '" + pass + "' cannot be probed for method " + options_.name + " on this frame (passes: " + known + ")");
-  }
   return probe;
 }
 

@@ -9,9 +9,10 @@
 
 #include "filters/baselines/eaw.h"
 #include "filters/method.h"
+#include "filters/passes.h"
 #include "filters/svgf/atrous.h"
 #include "filters/svgf/svgf_params.h"
-#include "filters/svgf/svgf_shared.h"
+#include "filters/surface_planes.h"
 #include "filters/svgf/temporal.h"
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
@@ -35,6 +36,10 @@ struct SvgfOptions {
 // albedo, emission, both illumination streams, and `position` for the EAW spatial filter. The Vulkan ports read
 // the same (gpu/svgf_vulkan.h).
 InputChannels svgf_input_channels(const SvgfOptions& options);
+// The passes a filter with `options` runs, in order (declared in filters/passes.h), and every channel its
+// dump holds: each pass's dump layers for both streams and every level it runs.
+std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options);
+std::vector<std::string> svgf_dump_channels(const SvgfOptions& options);
 
 class SvgfFilter : public Method {
  public:
@@ -45,6 +50,7 @@ class SvgfFilter : public Method {
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }
+  std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
 
  private:
   // What one illumination stream carries from frame to frame, and what each of its passes saw last frame.
@@ -62,7 +68,8 @@ class SvgfFilter : public Method {
     const RgbPlane& filtered() const;  // the stream's result: the last level's output
   };
 
-  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& prefix);
+  // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name);
   double time_pass(const std::string& pass, const std::function<void()>& run);
   const Stream& stream(const std::string& name) const;
 

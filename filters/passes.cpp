@@ -1,0 +1,151 @@
+// The declarations of every filter pass, and the functions that expand their layer patterns. See passes.h.
+#include "filters/passes.h"
+
+#include "core/error.h"
+
+namespace rtdr {
+
+const std::vector<PassDecl>& filter_passes() {
+  using namespace layers;
+  static const std::vector<PassDecl> passes = {
+      {"temporal", "filters/svgf/temporal.cpp", "[SVGF17 Sec. 4.1, 4.2]", PassScope::Stream,
+       "the stream's 1-spp illumination; depth.Z, normal, id.mesh and motion; last frame's colour history, "
+       "moments, history length and G-buffer",
+       {&kTemporal, &kMoment1, &kMoment2, &kHistoryLength},
+       {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history"},
+       "the back-projected position p', each bilinear tap's consistency tests (inside, mesh id, depth, normal) and "
+       "weight, the 3x3 fallback when no tap is consistent, then alpha, C', mu1', mu2' and n"},
+      {"variance", "filters/svgf/variance.cpp", "[SVGF17 Sec. 4.2]", PassScope::Stream,
+       "the temporal pass's moments and history length; depth.Z, depth.dX/dY, normal, id.mesh",
+       {&kVariance},
+       {"variance_min_history", "sigma_z", "sigma_n", "epsilon"},
+       "n, then either mu2' - mu1'^2 (n >= variance_min_history) or the 7x7 spatial estimate: each tap's w_z, w_n "
+       "and moments, and the weighted means"},
+      {"prefilter", "filters/svgf/prefilter.cpp", "[SVGF17 Sec. 4.4, Eq. 5]", PassScope::StreamLevel,
+       "the variance entering a-trous level i",
+       {&kLevelPrefiltered},
+       {},
+       "each of the 3x3 taps' binomial weight g and variance, and g3x3(Var)(p)"},
+      {"atrous", "filters/svgf/atrous.cpp", "[SVGF17 Eq. 1-5, Sec. 4.3]", PassScope::StreamLevel,
+       "level i - 1's colour and variance (level 0: the temporal colour and the variance pass), the prefilter of "
+       "that variance; depth.Z, depth.dX/dY, normal, id.mesh",
+       {&kLevel, &kLevelVariance, &kFiltered},
+       {"sigma_z", "sigma_n", "sigma_l", "epsilon", "atrous_levels", "kernel_size", "history_level"},
+       "z, grad z, n, l and g3x3(Var) at p, then per tap: p - q, z(q), n(q), l(q), w_z, w_n, w_l, w, h, h w and "
+       "Var(q); then the sums, c_{i+1}(p) and Var(c_{i+1}(p))"},
+      {"eaw", "filters/baselines/eaw.cpp", "[EAW10]", PassScope::StreamLevel,
+       "level i - 1's colour (level 0: the temporal colour); position, normal, id.mesh",
+       {&kLevel, &kFiltered},
+       {"sigma_rt", "sigma_n", "sigma_x", "levels"},
+       "per tap: h, w_rt, w_n, w_x and w; then the sums and the level's colour"},
+      {"modulate", "filters/svgf/modulate.cpp", "[SVGF17 Sec. 3]", PassScope::Frame,
+       "both streams' filtered illumination; albedo, emission",
+       {&kColor},
+       {},
+       "the demodulation factor max(albedo, 0.001), direct + indirect, the reflected radiance and the colour"},
+      {"tonemap", "filters/svgf/tonemap.cpp", "[Reinhard02 Eq. 2, 3]", PassScope::Frame,
+       "the modulate pass's colour",
+       {&kTonemapped, &kDisplay},
+       {"exposure"},
+       "L_w, L = exposure L_w, L_d = L / (1 + L), and the display colour"},
+      {"taa", "filters/taa/taa.cpp", "[Karis14]", PassScope::Frame,
+       "the tone-mapped colour, last frame's display, motion",
+       {&kDisplay},
+       {"alpha", "clip_history", "jitter_period"},
+       "the history position, its bilinear fetch, the 3x3 neighbourhood's box, the clipped history and the blend"},
+  };
+  return passes;
+}
+
+const PassDecl& find_pass(std::string_view name) {
+  std::string known;
+  for (const PassDecl& pass : filter_passes()) {
+    if (pass.name == name) return pass;
+    known += (known.empty() ? "" : ", ") + std::string(pass.name);
+  }
+  throw Error("there is no pass '" + std::string(name) + "' (passes: " + known + ")");
+}
+
+std::string layer_name(const LayerDecl& layer, std::string_view stream, int level) {
+  std::string name(layer.pattern);
+  if (const size_t at = name.find("<s>"); at != std::string::npos) name.replace(at, 3, stream);
+  if (const size_t at = name.find("<i>"); at != std::string::npos) name.replace(at, 3, std::to_string(level));
+  return name;
+}
+
+std::vector<std::string> layer_channels(const LayerDecl& layer, std::string_view stream, int level) {
+  const std::string name = layer_name(layer, stream, level);
+  if (layer.type == LayerType::Scalar) return {name};
+  return {name + ".R", name + ".G", name + ".B"};
+}
+
+std::vector<std::string> expand_layer(const LayerDecl& layer, int levels) {
+  const bool per_stream = layer.pattern.find("<s>") != std::string_view::npos;
+  const bool per_level = layer.pattern.find("<i>") != std::string_view::npos;
+  std::vector<std::string> channels;
+  for (const std::string_view stream : {"direct", "indirect"}) {
+    for (int level = 0; level < (per_level ? levels : 1); ++level)
+      for (std::string& c : layer_channels(layer, stream, per_level ? level : -1)) channels.push_back(std::move(c));
+    if (!per_stream) break;
+  }
+  return channels;
+}
+
+bool layer_has_channel(const LayerDecl& layer, std::string_view channel) {
+  // Match the pattern piece by piece: "<s>" against a stream name, "<i>" against the digits of a level.
+  std::string_view pattern = layer.pattern;
+  while (!pattern.empty()) {
+    if (pattern.substr(0, 3) == "<s>") {
+      pattern.remove_prefix(3);
+      if (channel.substr(0, 6) == "direct") channel.remove_prefix(6);
+      else if (channel.substr(0, 8) == "indirect") channel.remove_prefix(8);
+      else return false;
+    } else if (pattern.substr(0, 3) == "<i>") {
+      pattern.remove_prefix(3);
+      size_t digits = 0;
+      while (digits < channel.size() && channel[digits] >= '0' && channel[digits] <= '9') ++digits;
+      if (digits == 0) return false;
+      channel.remove_prefix(digits);
+    } else {
+      if (channel.empty() || channel.front() != pattern.front()) return false;
+      pattern.remove_prefix(1);
+      channel.remove_prefix(1);
+    }
+  }
+  if (layer.type == LayerType::Scalar) return channel.empty();
+  return channel == ".R" || channel == ".G" || channel == ".B";
+}
+
+std::string pass_writing(const std::string& channel) {
+  std::string passes;
+  for (const PassDecl& pass : filter_passes())
+    for (const LayerDecl* layer : pass.writes)
+      if (layer_has_channel(*layer, channel)) {
+        passes += (passes.empty() ? "" : ", ") + std::string(pass.name);
+        break;
+      }
+  return passes.empty() ? "?" : passes;
+}
+
+namespace {
+
+void require_type(const LayerDecl& layer, LayerType type) {
+  if (layer.type != type)
+    throw Error("dump_layer: layer '" + std::string(layer.pattern) + "' is declared " +
+                (layer.type == LayerType::Rgb ? "RGB" : "scalar") + " but was given a " +
+                (type == LayerType::Rgb ? "RGB" : "scalar") + " plane (filters/passes.h)");
+}
+
+}  // namespace
+
+void dump_layer(Frame* dump, const LayerDecl& layer, std::string_view stream, int level, const RgbPlane& plane) {
+  require_type(layer, LayerType::Rgb);
+  if (dump) set_rgb_plane(*dump, layer_name(layer, stream, level), plane);
+}
+
+void dump_layer(Frame* dump, const LayerDecl& layer, std::string_view stream, int level, const FloatPlane& plane) {
+  require_type(layer, LayerType::Scalar);
+  if (dump) set_float_plane(*dump, layer_name(layer, stream, level), plane);
+}
+
+}  // namespace rtdr

@@ -1,0 +1,111 @@
+// Every filter pass, declared once: its name, what it reads, the layers it writes (name pattern, type,
+// meaning, equation), the parameters it reads, and what `rtdr probe` prints for it. These declarations are
+// data that the rest of the project iterates:
+// - the golden pipeline (filters/svgf/svgf.cpp) and the Vulkan one (gpu/svgf_vulkan.cpp) name every layer they
+//   dump through them (dump_layer);
+// - `rtdr probe --pass NAME` takes its pass names and their descriptions from them;
+// - `rtdr compare` expects every layer they declare for the method (Method::dump_channels);
+// - the tests take their layer lists from them, and tests/docs_buffers_test.cpp checks that docs/buffers.md
+//   ("Filter passes") documents exactly these layers.
+// Adding a pass: declare its layers and the pass here, dump them with dump_layer, add a row to docs/buffers.md.
+#pragma once
+
+#include "core/frame.h"
+#include "filters/image.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rtdr {
+
+// An RGB layer is three float channels, <layer>.R, <layer>.G, <layer>.B; a scalar layer is one float channel
+// named like the layer itself.
+enum class LayerType { Rgb, Scalar };
+
+// Where a layer goes: the output frame of `rtdr filter`, or the dump (--dump-passes) beside it.
+enum class LayerUse { Output, Dump };
+
+// One layer a pass writes. In `pattern`, "<s>" stands for the illumination stream (direct or indirect) and "<i>"
+// for the level of the spatial filter, 0 to levels - 1; a layer without them is written once per frame.
+struct LayerDecl {
+  std::string_view pattern;
+  LayerType type;
+  LayerUse use;
+  std::string_view meaning;
+  std::string_view cite;  // the equation or section it holds, "[SVGF17 Sec. 4.1]"
+};
+
+// The layers, one constant each, so that the code writing a layer and the code reading it name the same
+// declaration. Their rows in docs/buffers.md ("Filter passes") say the same in prose.
+namespace layers {
+inline constexpr LayerDecl kColor{"color", LayerType::Rgb, LayerUse::Output,
+                                  "the filtered radiance, linear HDR: emission + max(albedo, 0.001) (direct + indirect)",
+                                  "[SVGF17 Sec. 3]"};
+inline constexpr LayerDecl kDisplay{"display", LayerType::Rgb, LayerUse::Output,
+                                    "`color` tone mapped, then temporally antialiased where the method uses TAA",
+                                    "[Reinhard02 Eq. 3], [Karis14]"};
+inline constexpr LayerDecl kTemporal{"filter.<s>.temporal", LayerType::Rgb, LayerUse::Dump, "integrated colour C'",
+                                     "[SVGF17 Sec. 4.1]"};
+inline constexpr LayerDecl kMoment1{"filter.<s>.moments.mu1", LayerType::Scalar, LayerUse::Dump,
+                                    "integrated first luminance moment mu1'", "[SVGF17 Sec. 4.2]"};
+inline constexpr LayerDecl kMoment2{"filter.<s>.moments.mu2", LayerType::Scalar, LayerUse::Dump,
+                                    "integrated second luminance moment mu2'", "[SVGF17 Sec. 4.2]"};
+inline constexpr LayerDecl kHistoryLength{"filter.<s>.history_length", LayerType::Scalar, LayerUse::Dump,
+                                          "history length n in frames (1 after a disocclusion)", "[SVGF17 Sec. 4.1]"};
+inline constexpr LayerDecl kVariance{"filter.<s>.variance", LayerType::Scalar, LayerUse::Dump,
+                                     "luminance variance: mu2' - mu1'^2, or the 7x7 spatial estimate while n < 4",
+                                     "[SVGF17 Sec. 4.2]"};
+inline constexpr LayerDecl kLevel{"filter.<s>.level<i>", LayerType::Rgb, LayerUse::Dump,
+                                  "the output of level i of the spatial filter", "[SVGF17 Eq. 1]"};
+inline constexpr LayerDecl kLevelVariance{"filter.<s>.level<i>.variance", LayerType::Scalar, LayerUse::Dump,
+                                          "the propagated variance of a-trous level i", "[SVGF17 Sec. 4.3]"};
+inline constexpr LayerDecl kLevelPrefiltered{"filter.<s>.level<i>.prefiltered_variance", LayerType::Scalar,
+                                             LayerUse::Dump, "g3x3 of level i's input variance, steering w_l",
+                                             "[SVGF17 Eq. 5]"};
+inline constexpr LayerDecl kFiltered{"filter.<s>.filtered", LayerType::Rgb, LayerUse::Dump,
+                                     "the stream's result, the last level's output (methods without a spatial filter "
+                                     "do not write it: their result is filter.<s>.temporal)",
+                                     "[SVGF17 Sec. 3]"};
+inline constexpr LayerDecl kTonemapped{"filter.tonemapped", LayerType::Rgb, LayerUse::Dump,
+                                       "`color` tone mapped, before TAA", "[Reinhard02 Eq. 3]"};
+}  // namespace layers
+
+// What a pass runs on: the whole frame once, each illumination stream, or each level of each stream.
+enum class PassScope { Frame, Stream, StreamLevel };
+
+struct PassDecl {
+  std::string_view name;    // `rtdr probe --pass NAME`, and the key of its time in Method::pass_times
+  std::string_view golden;  // the file of its golden per-pixel function
+  std::string_view cite;    // what it implements
+  PassScope scope;
+  std::string_view reads;   // its inputs: layers of the input frame (docs/buffers.md) and earlier passes' layers
+  std::vector<const LayerDecl*> writes;
+  std::vector<std::string_view> params;  // rows of its parameter table (svgf_params.h, eaw.h, tonemap.h, taa.h)
+  std::string_view probe;   // what `rtdr probe --pass NAME` prints, term by term
+};
+
+// Every pass of every method, in the order a frame runs them.
+const std::vector<PassDecl>& filter_passes();
+// The declaration of pass `name`; throws rtdr::Error listing the passes when there is none.
+const PassDecl& find_pass(std::string_view name);
+
+// The layer's name for one stream and level: "filter.<s>.level<i>" -> "filter.direct.level2".
+std::string layer_name(const LayerDecl& layer, std::string_view stream = {}, int level = -1);
+// Its channels: "<name>.R", "<name>.G", "<name>.B" for an RGB layer, "<name>" for a scalar one.
+std::vector<std::string> layer_channels(const LayerDecl& layer, std::string_view stream = {}, int level = -1);
+// Every channel of `layer` for both streams and `levels` levels, as far as its pattern repeats.
+std::vector<std::string> expand_layer(const LayerDecl& layer, int levels);
+// Whether `channel` is one of `layer`'s channels for some stream and level.
+bool layer_has_channel(const LayerDecl& layer, std::string_view channel);
+
+// The passes that write `channel`, joined by ", " ("color.R" -> "modulate"; "filter.direct.level2.R" ->
+// "atrous, eaw"); "?" for a channel no pass declares. For error messages.
+std::string pass_writing(const std::string& channel);
+
+// Writes `plane` into `dump` as `layer` for one stream and level; nothing when `dump` is null. The plane's
+// kind must match the layer's type (checked: a mismatch is a programming error and throws).
+void dump_layer(Frame* dump, const LayerDecl& layer, std::string_view stream, int level, const RgbPlane& plane);
+void dump_layer(Frame* dump, const LayerDecl& layer, std::string_view stream, int level, const FloatPlane& plane);
+
+}  // namespace rtdr

@@ -7,7 +7,7 @@
 // timestamps, and "transfer" is the host's packing of the inputs and unpacking of the outputs (not part of
 // "total"). With two back ends, each pass's speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and
 // indirect, at 1280x720 on 2 cores in at most 2 s (cpu); the Vulkan ports at least 5x faster than the cpu passes on
-// lavapipe (issue 6).
+// lavapipe.
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"

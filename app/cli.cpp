@@ -1,4 +1,5 @@
-// The App of `rtdr` (app/cli.h): the global --threads option and one subcommand per cmd_<name>.cpp.
+// The App of `rtdr` (app/cli.h): the global --threads option and the subcommands of app/cmd_<name>.cpp (one per
+// file; cmd_filter.cpp adds both filter and probe).
 #include "app/cli.h"
 
 namespace rtdr {

@@ -1,6 +1,7 @@
-// rtdr: the command line. Each subcommand lives in its own file (cmd_<name>.cpp) and registers itself
-// in app/cli.cpp. User errors (rtdr::Error, CLI11 parse errors) print one line and exit non-zero; nothing
-// is written partially because every output file is written to a temporary name and renamed.
+// rtdr: the command line. Each subcommand lives in a file app/cmd_<name>.cpp (probe in cmd_filter.cpp, beside
+// filter, whose pipeline it runs) and is registered in app/cli.cpp. User errors (rtdr::Error, CLI11 parse
+// errors) print one line and exit non-zero; nothing is written partially because every output file is written
+// to a temporary name and renamed.
 #include "app/cli.h"
 #include "core/error.h"
 #include "core/parallel.h"

@@ -1,6 +1,7 @@
 // A denoising method as the tools see it: frames in, frames out, in sequence order, with whatever
 // history it keeps. `rtdr filter`, `rtdr probe`, the evaluation harness and the benchmarks all go through
-// this interface, so adding a method is one line in make_method().
+// this interface. A method that is SVGF's pipeline with some stages switched off or swapped is one line of the
+// registry in method.cpp; make_method() looks its name up there.
 //
 // Input frame: the layers `rtdr render` writes (docs/buffers.md): the G-buffer, motion, and the demodulated
 // 1-spp `direct` and `indirect` illumination. Output frame: `color.R/G/B` (linear HDR radiance, remodulated

@@ -1,8 +1,8 @@
 // Tunables declared once. Each algorithm lists its parameters in one X-macro table,
 //   X(type, name, default, min, max, symbol, source)
 // and these expansions turn the table into its struct, its rows (for CLI flags, docs and the printed
-// configuration) and its range checks, so no parameter's default or range is written twice (STYLE.md,
-// "Declare every tunable once"). The GLSL ports include the same tables.
+// configuration) and its range checks, so no parameter's default or range is written twice. The shaders do not
+// include the tables: each port's push block (filters/svgf/*_shared.h) carries the values its pass reads.
 #pragma once
 
 #include <string>

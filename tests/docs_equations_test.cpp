@@ -79,7 +79,7 @@ TEST_CASE("docs/equations.md names functions, tests and shaders that exist, in f
     const std::string citation = row.paper + " " + row.equation;
     INFO("citation '" << citation << "' in " << fn[0]);
     CHECK(code.find(citation) != std::string::npos);
-    // Test cell: `tests/file_test.cpp`, optionally followed by "a test case name".
+    // Test cell: `tests/<folder>_<stem>_test.cpp`, optionally followed by "a test case name".
     const std::vector<std::string> test = code_spans(row.test);
     REQUIRE(!test.empty());
     const fs::path test_file = fs::path(RTDR_SOURCE_DIR) / test[0];

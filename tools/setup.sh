@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# Every dependency is a Debian package; ../shared/TOOLCHAIN.md has the CMake names and gotchas.
+# Every dependency is a Debian package; CMakeLists.txt finds each one by the CMake name its package installs.
 PACKAGES=(
   cmake g++ pkg-config ninja-build
   libglm-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev catch2 libtbb-dev

@@ -1,6 +1,7 @@
 // Every SVGF tunable, declared once: C++ name, type, default, valid range, the paper's symbol and where the
-// value comes from. The table expands into the SvgfParams struct, the CLI flags (`--svgf.<name>`), the printed
-// configuration and range checks; issue 6's shaders include this same file (GLSL has the C preprocessor).
+// value comes from. The table expands into the SvgfParams struct, the CLI flags (`--<name>`, as `--sigma_l 4`),
+// the printed configuration and range checks. The shaders read the values they need from their push blocks
+// (temporal_shared.h, variance_shared.h, atrous_shared.h), which gpu/ fills from SvgfParams.
 //
 // X(type, name, default, min, max, symbol, source)
 #define RTDR_SVGF_PARAMS(X)                                                                                       \

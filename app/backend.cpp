@@ -9,7 +9,7 @@
 
 namespace rtdr {
 
-BackendMethod make_backend_method(const std::string& backend, const std::string& method, const SvgfParams& params) {
+BackendMethod make_backend_method(const std::string& backend, const std::string& method, const MethodParams& params) {
   BackendMethod m;
   if (backend == "cpu") {
     m.method = make_method(method, params);

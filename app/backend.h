@@ -21,7 +21,7 @@ struct BackendMethod {
 };
 
 // Throws rtdr::Error for an unknown back end or method, a method without a Vulkan port, or no Vulkan device.
-BackendMethod make_backend_method(const std::string& backend, const std::string& method, const SvgfParams& params);
+BackendMethod make_backend_method(const std::string& backend, const std::string& method, const MethodParams& params);
 
 // The method's output frame for `in` with its dump's layers (every intermediate buffer, docs/buffers.md) added:
 // what `rtdr filter --dump-passes` writes and `rtdr compare` compares.

@@ -22,7 +22,7 @@ struct BenchOptions {
   std::string method = "svgf";   // --stage filter
   std::string backend = "cpu";   // --stage filter: cpu, vulkan or cpu,vulkan
   int submits = 1;               // --stage filter, vulkan: each frame's batch submitted this often, the last timed
-  SvgfParams params;             // --stage filter: the method's parameters (--atrous_levels 4, --kernel_size 3, ...)
+  MethodParams params;           // --stage filter: the method's parameters (--atrous-levels 4, --kernel-size 3, ...)
 };
 
 // The median of a non-empty set of measurements (the upper one of the middle two for an even count).

@@ -2,7 +2,7 @@
 // at --size, per pass, on each back end of --backend (cpu, vulkan, or cpu,vulkan in one run): the median over
 // --runs frames of a sequence, after at least 5 frames (or --warmup) that build the history, so the variance
 // estimate is the temporal one of the steady state (SVGF17 Sec. 4.2 switches from the 7x7 spatial estimate after
-// 4 frames). The method's parameters are rtdr filter's (--atrous_levels 4, --kernel_size 3, ...), and reports name
+// 4 frames). The method's parameters are rtdr filter's (--atrous-levels 4, --kernel-size 3, ...), and reports name
 // it as a spec of rtdr eval ("svgf:kernel_size=3"). CPU pass times are wall times; Vulkan pass times are device
 // timestamps, and "transfer" is the host's packing of the inputs and unpacking of the outputs (not part of
 // "total"). With two back ends, each pass's speed-up is cpu ms / vulkan ms. Targets: the whole SVGF, direct and
@@ -60,8 +60,9 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
 
 void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
   const std::vector<std::string> backends = parse_backends(o.backend);
-  // The method as a spec of rtdr eval: its name and the parameters that differ from their defaults.
-  const std::string changed = changed_params(o.params);
+  // The method as a spec of rtdr eval: its name and the SVGF parameters that differ from their defaults (a spec
+  // names SVGF's table only; the other tables' flags still reach the method).
+  const std::string changed = changed_params(o.params.svgf);
   const std::string spec = o.method + (changed.empty() ? "" : ":" + changed);
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);

@@ -64,7 +64,7 @@ Command add_bench_command(CLI::App& app) {
                   "GPU runs at its working clock rather than idling while the host packs the next frame")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  add_svgf_flags(sub, o->params);  // --stage filter
+  add_method_flags(sub, o->params);  // --stage filter
   return {sub, [o, sub] {
             // --backend alone means the filter stage, on pillars, 5 runs (a 1080p CPU frame takes seconds).
             if (sub->count("--backend") > 0 && sub->count("--stage") == 0) o->stage = "filter";

@@ -36,7 +36,7 @@ struct CompareOptions {
   std::string csv;
   double rel_floor = 1e-2;
   std::optional<double> max_rel_error;  // not checked when not given
-  SvgfParams params;
+  MethodParams params;
 };
 
 // A channel's worst pixel over the frames, and the frame it is in.
@@ -149,7 +149,7 @@ Command add_compare_command(CLI::App& app) {
   sub->add_option("--rel-floor", o->rel_floor, "relative differences are to max(|cpu|, this)")->capture_default_str();
   sub->add_option("--max-rel-error", o->max_rel_error,
                   "fail (exit 1, after the report) when a channel's relative difference exceeds this");
-  add_svgf_flags(sub, o->params);
+  add_method_flags(sub, o->params);
   return {sub, [o] { run_compare(*o); }};
 }
 

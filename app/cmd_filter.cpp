@@ -24,7 +24,7 @@ struct FilterOptions {
   std::string in, out;
   std::string frames;
   bool dump = false;
-  SvgfParams params;
+  MethodParams params;
 };
 
 void run_filter(const FilterOptions& o) {
@@ -43,7 +43,7 @@ void run_filter(const FilterOptions& o) {
 
   std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
-              o.method == "none" ? "" : describe(o.params).c_str());
+              o.method == "none" ? "" : describe(o.params.svgf).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
     const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
@@ -66,7 +66,7 @@ struct ProbeOptions {
   std::string stream = "direct";
   int level = 0;
   bool json = false;
-  SvgfParams params;
+  MethodParams params;
 };
 
 void run_probe(const ProbeOptions& o) {
@@ -105,7 +105,7 @@ Command add_filter_command(CLI::App& app) {
   sub->add_option("--out", o->out, "output directory (created if missing)")->required();
   sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");
   sub->add_flag("--dump-passes", o->dump, "also write every intermediate buffer of every pass (docs/buffers.md)");
-  add_svgf_flags(sub, o->params);
+  add_method_flags(sub, o->params);
   return {sub, [o] { run_filter(*o); }};
 }
 
@@ -128,7 +128,7 @@ Command add_probe_command(CLI::App& app) {
   sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes)")->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");
-  add_svgf_flags(sub, o->params);
+  add_method_flags(sub, o->params);
   return {sub, [o] { run_probe(*o); }};
 }
 

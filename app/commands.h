@@ -2,12 +2,13 @@
 // and returns the function that runs it once the whole command line has been parsed.
 #pragma once
 
-#include "filters/svgf/svgf_params.h"
+#include "filters/method.h"
 
 #include <CLI/CLI.hpp>
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rtdr {
@@ -42,6 +43,11 @@ struct Pixel {
 };
 Pixel parse_pixel(const std::string& text, const std::string& flag);
 // The SVGF tunables as flags of `sub`, one per row of the table in filters/svgf/svgf_params.h.
-void add_svgf_flags(CLI::App* sub, SvgfParams& p);
+// Every parameter table a method reads, as flags: SVGF's rows as --<name>, EAW's, tone mapping's and TAA's as
+// --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores (--atrous-levels,
+// --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the method is made.
+void add_method_flags(CLI::App* sub, MethodParams& params);
+// The flag of row `name` of a table whose flags start with `prefix` ("", "eaw-", "tonemap-", "taa-").
+std::string param_flag(std::string_view prefix, std::string_view name);
 
 }  // namespace rtdr

@@ -4,6 +4,7 @@
 #include "core/frame.h"        // kMaxFrameIndex
 #include "raster/visibility.h"  // kMaxImageSize: the rasterizer's limit
 
+#include <algorithm>
 #include <charconv>
 
 namespace rtdr {
@@ -51,11 +52,37 @@ Pixel parse_pixel(const std::string& text, const std::string& flag) {
   return p;
 }
 
-void add_svgf_flags(CLI::App* sub, SvgfParams& p) {
-#define RTDR_SVGF_FLAG(type, name, def, lo, hi, symbol, source) \
-  sub->add_option("--" #name, p.name, std::string(source))->capture_default_str()->group("SVGF parameters");
-  RTDR_SVGF_PARAMS(RTDR_SVGF_FLAG)
-#undef RTDR_SVGF_FLAG
+std::string param_flag(std::string_view prefix, std::string_view name) {
+  std::string flag = "--" + std::string(prefix) + std::string(name);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+void add_method_flags(CLI::App* sub, MethodParams& p) {
+  // One flag per row of a table, into `table`, the member of p that holds it.
+#define RTDR_PARAM_FLAG(type, name, def, lo, hi, symbol, source) \
+  sub->add_option(param_flag(prefix, #name), table.name, std::string(source))->capture_default_str()->group(group);
+  {
+    SvgfParams& table = p.svgf;
+    const char *prefix = "", *group = "SVGF parameters";
+    RTDR_SVGF_PARAMS(RTDR_PARAM_FLAG)
+  }
+  {
+    EawParams& table = p.eaw;
+    const char *prefix = "eaw-", *group = "EAW parameters (methods eaw, eaw-accum)";
+    RTDR_EAW_PARAMS(RTDR_PARAM_FLAG)
+  }
+  {
+    TonemapParams& table = p.tonemap;
+    const char *prefix = "tonemap-", *group = "Tone mapping parameters";
+    RTDR_TONEMAP_PARAMS(RTDR_PARAM_FLAG)
+  }
+  {
+    TaaParams& table = p.taa;
+    const char *prefix = "taa-", *group = "TAA parameters";
+    RTDR_TAA_PARAMS(RTDR_PARAM_FLAG)
+  }
+#undef RTDR_PARAM_FLAG
 }
 
 }  // namespace rtdr

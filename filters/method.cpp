@@ -52,11 +52,14 @@ std::vector<std::string> method_names() {
   return names;
 }
 
-SvgfOptions method_options(const std::string& name, const SvgfParams& params) {
+SvgfOptions method_options(const std::string& name, const MethodParams& params) {
   for (const MethodEntry& m : registry()) {
     if (name != m.name) continue;
     SvgfOptions options = m.options();
-    options.svgf = params;
+    options.svgf = params.svgf;
+    options.eaw = params.eaw;
+    options.tonemap = params.tonemap;
+    options.taa_params = params.taa;
     return options;
   }
   std::string known;
@@ -64,7 +67,7 @@ SvgfOptions method_options(const std::string& name, const SvgfParams& params) {
   throw Error("--method '" + name + "' is not one of: " + known);
 }
 
-std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params) {
+std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params) {
   return std::make_unique<SvgfFilter>(method_options(name, params));
 }
 

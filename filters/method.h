@@ -11,7 +11,10 @@
 
 #include "core/frame.h"
 #include "filters/probe.h"
+#include "filters/baselines/eaw.h"
 #include "filters/svgf/svgf_params.h"
+#include "filters/svgf/tonemap.h"
+#include "filters/taa/taa.h"
 
 #include <map>
 #include <memory>
@@ -63,12 +66,22 @@ class Method {
 // (Dammertz 2010, no temporal reuse), "eaw-accum"
 // (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated). Throws rtdr::Error for an
 // unknown name, listing the known ones.
-// `params` are SVGF's tunables (svgf_params.h); methods that do not use one ignore it.
-std::unique_ptr<Method> make_method(const std::string& name, const SvgfParams& params = {});
+// Every parameter table a method reads, each at its declared defaults unless set: SVGF's (svgf_params.h), EAW's
+// (eaw.h), tone mapping's (tonemap.h) and TAA's (taa.h). Made from SvgfParams alone, the others keep their defaults.
+struct MethodParams {
+  MethodParams(const SvgfParams& svgf_params = {}) : svgf(svgf_params) {}  // NOLINT: implicit on purpose
+  SvgfParams svgf;
+  EawParams eaw;
+  TonemapParams tonemap;
+  TaaParams taa;
+};
+
+// `params` are the tunables; a method ignores the tables of the stages it does not run.
+std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params = {});
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
 // method, gpu/svgf_vulkan.h). Throws like make_method().
 struct SvgfOptions;
-SvgfOptions method_options(const std::string& name, const SvgfParams& params = {});
+SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
 std::vector<std::string> method_names();
 
 }  // namespace rtdr

@@ -62,14 +62,33 @@ std::string value(const CLI::App* sub, const std::string& flag) {
 
 bool has(const CLI::App* sub, const std::string& flag) { return sub->get_option_no_throw(flag) != nullptr; }
 
-// The SVGF parameters the subcommand's flags hold: each row of filters/svgf/svgf_params.h that was given,
-// converted by CLI11 exactly as it converted it into the command's own SvgfParams.
-rtdr::SvgfParams svgf_params(const CLI::App* sub) {
-  rtdr::SvgfParams p;
-#define RTDR_FUZZ_READ_FLAG(type, name, def, lo, hi, symbol, source)                    \
-  if (const CLI::Option* o = sub->get_option_no_throw("--" #name); o && o->count() > 0) \
-    p.name = o->as<type>();
-  RTDR_SVGF_PARAMS(RTDR_FUZZ_READ_FLAG)
+// The method parameters the subcommand's flags hold: each row of the four tables (app/commands.h's
+// add_method_flags) that was given, converted by CLI11 exactly as it converted it into the command's own.
+rtdr::MethodParams method_params(const CLI::App* sub) {
+  rtdr::MethodParams p;
+#define RTDR_FUZZ_READ_FLAG(type, name, def, lo, hi, symbol, source)                                    \
+  if (const CLI::Option* o = sub->get_option_no_throw(rtdr::param_flag(prefix, #name)); o && o->count() > 0) \
+    table.name = o->as<type>();
+  {
+    auto& table = p.svgf;
+    const char* prefix = "";
+    RTDR_SVGF_PARAMS(RTDR_FUZZ_READ_FLAG)
+  }
+  {
+    auto& table = p.eaw;
+    const char* prefix = "eaw-";
+    RTDR_EAW_PARAMS(RTDR_FUZZ_READ_FLAG)
+  }
+  {
+    auto& table = p.tonemap;
+    const char* prefix = "tonemap-";
+    RTDR_TONEMAP_PARAMS(RTDR_FUZZ_READ_FLAG)
+  }
+  {
+    auto& table = p.taa;
+    const char* prefix = "taa-";
+    RTDR_TAA_PARAMS(RTDR_FUZZ_READ_FLAG)
+  }
 #undef RTDR_FUZZ_READ_FLAG
   return p;
 }
@@ -87,8 +106,8 @@ void check_values(const CLI::App* sub) {
     if (r.first < 0 || r.last < r.first || r.last > rtdr::kMaxFrameIndex)
       finding("parse_frames accepted '" + value(sub, "--frames") + "'");
   }
-  if (has(sub, "--alpha")) rtdr::validate(svgf_params(sub));  // the SVGF flags come as one group
-  if (has(sub, "--method")) rtdr::make_method(value(sub, "--method"), svgf_params(sub));
+  if (has(sub, "--alpha")) rtdr::validate(method_params(sub).svgf);  // the parameter flags come as one group
+  if (has(sub, "--method")) rtdr::make_method(value(sub, "--method"), method_params(sub));
   if (has(sub, "--backend")) rtdr::parse_backends(value(sub, "--backend"));
   if (has(sub, "--methods") && value(sub, "--methods") != "all") {
     // rtdr eval: comma-separated method specs (app/cmd_eval.cpp), each parsed as eval/experiment.h says.

@@ -108,7 +108,7 @@ def main():
     commands = {
         "render.txt": "render --scene cornell --frames 0-9 --size 1280x720 --spp 4 --seed 7 --max-bounces 4 --out out/a",
         "filter.txt": "--threads 1 filter --method svgf --in out/a --out out/b --frames 2-3 --alpha 0.1 "
-                      "--atrous_levels 4 --kernel_size 3 --dump-passes",
+                      "--atrous-levels 4 --kernel-size 3 --dump-passes",
         "probe.txt": "probe --in out/a --frame 5 --pixel 640,360 --pass atrous --level 2 --json",
         "eval.txt": "eval --scene flicker --methods svgf:alpha=0.1:kernel_size=3,accum,"
                     "svgf:backend=vulkan:illumination=fp16 --sweep --frames 20-45 --size 320x180 --ref-spp 64",

@@ -191,8 +191,8 @@ for name, terms in taps.items():
 
 $\sigma_l$ in Eq. 5 says how many standard deviations of noise a luminance difference may be before a tap
 loses its weight; the paper uses $\sigma_l = 4$. The cell below probes the same pixel with three values
-(`rtdr probe ... --json --sigma_l S`) and filters the whole sequence with each (`rtdr filter --method svgf
---sigma_l S`). Each heat map shows $w_l$ of the 25 taps, laid out as they lie around $p$.
+(`rtdr probe ... --json --sigma-l S`) and filters the whole sequence with each (`rtdr filter --method svgf
+--sigma-l S`). Each heat map shows $w_l$ of the 25 taps, laid out as they lie around $p$.
 
 1. Which taps lose weight first as $\sigma_l$ shrinks? Compare their $l(q)$ with $l(p)$ in the table above.
 2. Take one tap and compute its $w_l$ by hand from $l(p)$, $l(q)$ and $g_{3\times3}(\mathrm{Var})(p)$, which
@@ -206,7 +206,7 @@ work = tempfile.mkdtemp()
 fig, axes = plt.subplots(1, len(sweep), figsize=(4 * len(sweep), 3.4), constrained_layout=True)
 filtered = []
 for ax, sigma_l in zip(axes, sweep):
-    taps = probe_taps("--sigma_l", str(sigma_l))
+    taps = probe_taps("--sigma-l", str(sigma_l))
     step = taps[""]["step 2^i"]
     grid = np.ones((5, 5))  # the centre tap's w_l is 1 by definition
     for name, terms in taps.items():
@@ -218,7 +218,7 @@ for ax, sigma_l in zip(axes, sweep):
     ax.set_title(f"w_l, sigma_l = {sigma_l:g}: sum h w = {taps['sum']['sum h w']:.3f}", fontsize=9)
     ax.set_xlabel("dx / 2^i")
     out_dir = os.path.join(work, f"sigma_l_{sigma_l:g}")
-    subprocess.run([RTDR, "filter", "--method", "svgf", "--in", IN, "--out", out_dir, "--sigma_l", str(sigma_l)],
+    subprocess.run([RTDR, "filter", "--method", "svgf", "--in", IN, "--out", out_dir, "--sigma-l", str(sigma_l)],
                    check=True, capture_output=True)
     filtered.append(read_exr(os.path.join(out_dir, last)))
 axes[0].set_ylabel("dy / 2^i")

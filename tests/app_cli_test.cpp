@@ -133,8 +133,8 @@ TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, 
   std::string backends = "cpu";
   if (rtdr::VulkanContext::available()) backends += ",vulkan";
   const fs::path csv = dir / "bench.csv";
-  const RunResult r = run_rtdr("bench --backend " + backends + " --size 32x18 --runs 1 --warmup 1 --atrous_levels 2 " +
-                                   "--kernel_size 3 --csv " + csv.string(),
+  const RunResult r = run_rtdr("bench --backend " + backends + " --size 32x18 --runs 1 --warmup 1 --atrous-levels 2 " +
+                                   "--kernel-size 3 --csv " + csv.string(),
                                dir);
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
@@ -149,7 +149,7 @@ TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, 
     CHECK(std::regex_search(r.out, levels));
   }
   // A parameter out of its range is one line, before anything runs.
-  const RunResult bad = run_rtdr("bench --backend cpu --size 32x18 --runs 1 --kernel_size 4", dir);
+  const RunResult bad = run_rtdr("bench --backend cpu --size 32x18 --runs 1 --kernel-size 4", dir);
   CHECK(bad.exit_code != 0);
   CHECK(bad.err == "rtdr: error: svgf parameter kernel_size must be 3 or 5\n");
 }

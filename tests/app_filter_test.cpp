@@ -119,6 +119,40 @@ TEST_CASE("rtdr filter --backend vulkan writes what --backend cpu writes, within
   }
 }
 
+TEST_CASE("every parameter table reaches the CLI: EAW, tone mapping and TAA flags change what they say") {
+  const fs::path dir = scratch("tables");
+  const std::string in = " --in " + sequence().string();
+  // --eaw-levels 2: the dump holds EAW levels 0 and 1 only.
+  REQUIRE(run_rtdr("filter --method eaw --eaw-levels 2 --dump-passes" + in + " --out " + (dir / "eaw").string(), dir)
+              .exit_code == 0);
+  const rtdr::Frame eaw = rtdr::read_exr((dir / "eaw" / "frame_0002.exr").string());
+  CHECK(eaw.has("filter.direct.level1.R"));
+  CHECK_FALSE(eaw.has("filter.direct.level2.R"));
+
+  // --tonemap-exposure 0: L = 0 L_w, so the display is black [Reinhard02 Eq. 2, 3]; the colour is untouched.
+  // --taa-alpha 1: the display is the current frame's tone-mapped colour, no history (up to the rounding of
+  // TAA's round trip through YCoCg).
+  REQUIRE(run_rtdr("filter" + in + " --out " + (dir / "plain").string(), dir).exit_code == 0);
+  REQUIRE(run_rtdr("filter --tonemap-exposure 0" + in + " --out " + (dir / "black").string(), dir).exit_code == 0);
+  REQUIRE(run_rtdr("filter --taa-alpha 1 --dump-passes" + in + " --out " + (dir / "no_taa").string(), dir).exit_code ==
+          0);
+  const rtdr::Frame plain = rtdr::read_exr((dir / "plain" / "frame_0002.exr").string());
+  const rtdr::Frame black = rtdr::read_exr((dir / "black" / "frame_0002.exr").string());
+  const rtdr::Frame no_taa = rtdr::read_exr((dir / "no_taa" / "frame_0002.exr").string());
+  for (const char* c : {"R", "G", "B"}) {
+    INFO("channel " << c);
+    const std::string display = std::string("display.") + c, colour = std::string("color.") + c;
+    CHECK(black.float_channel(colour).data == plain.float_channel(colour).data);
+    for (const float v : black.float_channel(display).data) CHECK(v == 0.0f);
+    const std::vector<float>& shown = no_taa.float_channel(display).data;
+    const std::vector<float>& tonemapped = no_taa.float_channel(std::string("filter.tonemapped.") + c).data;
+    float worst = 0.0f;
+    for (size_t i = 0; i < shown.size(); ++i) worst = std::max(worst, std::abs(shown[i] - tonemapped[i]));
+    CHECK(worst <= 1e-6f);
+    CHECK(shown != plain.float_channel(display).data);  // TAA does blend by default
+  }
+}
+
 TEST_CASE("rtdr filter --dump-passes adds every filter.* layer and changes nothing else") {
   const fs::path dir = scratch("dump");
   const RunResult plain = run_rtdr("filter --in " + sequence().string() + " --out " + (dir / "plain").string(), dir);
@@ -233,7 +267,10 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
       "filter --in " + nan.string() + " --out " + out,                                  // NaN in direct.G
       "filter --in " + resized.string() + " --out " + out,                              // frame 1 is 16x9
       "filter --in " + seq + " --out " + out + " --method svfg",                        // unknown method
-      "filter --in " + seq + " --out " + out + " --sigma_l -1",                         // out of range
+      "filter --in " + seq + " --out " + out + " --sigma-l -1",                         // out of range
+      "filter --in " + seq + " --out " + out + " --sigma_l 4",                          // flags have hyphens
+      "filter --in " + seq + " --out " + out + " --taa-alpha 1.5",                      // out of range
+      "filter --in " + seq + " --out " + out + " --method eaw --eaw-levels 11",         // out of range
       "filter --in " + seq + " --out " + out + " --backend metal",                      // unknown back end
       "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // svgf only
       "compare --in " + seq + " --csv " + out + "/c.csv --rel-floor 0",                 // floor must be > 0

@@ -404,8 +404,8 @@ TEST_CASE("eval: method spec values with trailing text, fractions for ints or ou
 TEST_CASE("filter: SVGF flags out of range or of the wrong type are refused") {
   const fs::path dir = scratch("svgf_flags");
   for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
-           {"--atrous_levels", "1e30"}, {"--atrous_levels", "2.9"}, {"--alpha", "nan"}, {"--alpha", "-0.5"},
-           {"--sigma_l", "inf"}, {"--kernel_size", "4"}}) {
+           {"--atrous-levels", "1e30"}, {"--atrous-levels", "2.9"}, {"--alpha", "nan"}, {"--alpha", "-0.5"},
+           {"--sigma-l", "inf"}, {"--kernel-size", "4"}}) {
     INFO(flag[0] << " " << flag[1]);
     require_refused(filter(sequence(), dir / "out", flag), dir / "out");
   }

@@ -20,7 +20,7 @@ using namespace rtdr;
 
 namespace {
 
-// The lines of docs/buffers.md's "## Filter passes" section, up to the next "## " heading.
+// The lines of docs/buffers.md's "Filter passes" section, up to the next heading.
 std::vector<std::string> filter_passes_section() {
   std::ifstream in(fs::path(RTDR_SOURCE_DIR) / "docs" / "buffers.md");
   REQUIRE(in);

@@ -122,7 +122,7 @@ fi
 
 if wants options; then
   # The configurations a 0.5 ms target could take (docs/performance.md), each timed like the bench step.
-  for params in "--atrous_levels 4" "--atrous_levels 3" "--kernel_size 3" "--kernel_size 3 --atrous_levels 4"; do
+  for params in "--atrous-levels 4" "--atrous-levels 3" "--kernel-size 3" "--kernel-size 3 --atrous-levels 4"; do
     # shellcheck disable=SC2086  # $params is two or four words on purpose
     "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size 1920x1080 --runs 20 --warmup 5 --submits 10 \
       $params --csv "$LOGS/options_${params//[ -]/}.csv" 2>&1 | tee -a "$LOGS/options.txt" || status=1

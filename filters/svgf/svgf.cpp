@@ -15,7 +15,12 @@ namespace rtdr {
 // Every dump layer is named by its declaration in filters/passes.h (dump_layer), listed in docs/buffers.md.
 using namespace layers;
 
-SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) { validate(options_.svgf); }
+SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) {
+  validate(options_.svgf);
+  validate(options_.eaw);
+  validate(options_.tonemap);
+  validate(options_.taa_params);
+}
 
 void SvgfFilter::reset() {
   direct_ = Stream();

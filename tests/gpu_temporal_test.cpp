@@ -15,6 +15,7 @@
 #include "gpu/temporal_gpu.h"
 
 #include "core/error.h"
+#include "eval/frame_diff.h"
 #include "filters/svgf/temporal.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -41,9 +42,8 @@ struct Errors {
   double length_abs = 0.0;
 };
 
-double scaled_diff(float gpu, float golden) {
-  return std::abs(double(gpu) - double(golden)) / std::max(std::abs(double(golden)), 1e-3);
-}
+// |gpu - golden| / max(|golden|, 1e-3) (eval/frame_diff.h, as rtdr compare measures it).
+double scaled_diff(float gpu, float golden) { return rel_difference(gpu, golden, 1e-3); }
 
 // temporal_pass on what the context's port reads: the noisy and history colours as its records hold them.
 TemporalOutput golden_temporal(const VulkanContext& context, const RgbPlane& noisy, const SurfacePlanes& cur,

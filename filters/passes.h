@@ -39,9 +39,9 @@ struct LayerDecl {
 // The layers, one constant each, so that the code writing a layer and the code reading it name the same
 // declaration. Their rows in docs/buffers.md ("Filter passes") say the same in prose.
 namespace layers {
-inline constexpr LayerDecl kColor{"color", LayerType::Rgb, LayerUse::Output,
-                                  "the filtered radiance, linear HDR: emission + max(albedo, 0.001) (direct + indirect)",
-                                  "[SVGF17 Sec. 3]"};
+inline constexpr LayerDecl kColor{
+    "color", LayerType::Rgb, LayerUse::Output,
+    "the filtered radiance, linear HDR: emission + max(albedo, 0.001) (direct + indirect)", "[SVGF17 Sec. 3]"};
 inline constexpr LayerDecl kDisplay{"display", LayerType::Rgb, LayerUse::Output,
                                     "`color` tone mapped, then temporally antialiased where the method uses TAA",
                                     "[Reinhard02 Eq. 3], [Karis14]"};

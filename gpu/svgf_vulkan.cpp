@@ -203,7 +203,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
         dump_layer(&f, layers::kFiltered, stream_name(s), -1, unpack_illumination(r, w, h, s));
     });
   shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{.width = uw, .height = uh});
-  shaders_.tonemap(batch_, *b.colour, *b.tonemapped, TonemapPush{.width = uw, .height = uh, .exposure = options_.tonemap.exposure});
+  shaders_.tonemap(batch_, *b.colour, *b.tonemapped,
+                   TonemapPush{.width = uw, .height = uh, .exposure = options_.tonemap.exposure});
   if (d)
     d->copy(batch_, *b.tonemapped, [w, h](const GpuBuffer& r, Frame& f) {
       dump_layer(&f, layers::kTonemapped, {}, -1, unpack_rgb(r, w, h));

@@ -58,7 +58,8 @@ std::map<std::string, Documented> documented_layers() {
     REQUIRE(cells.size() >= 3);
     Documented doc{LayerType::Scalar, {}};
     std::stringstream passes(cells[2]);
-    for (std::string pass; std::getline(passes, pass, ',');) doc.passes.insert(pass.substr(pass.find_first_not_of(' ')));
+    for (std::string pass; std::getline(passes, pass, ',');)
+      doc.passes.insert(pass.substr(pass.find_first_not_of(' ')));
     const std::regex span("`([^`]+)`");
     for (auto it = std::sregex_iterator(cells[0].begin(), cells[0].end(), span); it != std::sregex_iterator(); ++it) {
       std::string name = (*it)[1].str();
@@ -115,9 +116,9 @@ TEST_CASE("layer patterns expand to names and match channels back") {
   CHECK(layer_channels(layers::kTonemapped) ==
         std::vector<std::string>{"filter.tonemapped.R", "filter.tonemapped.G", "filter.tonemapped.B"});
   CHECK(expand_layer(layers::kLevelPrefiltered, 2) ==
-        std::vector<std::string>{"filter.direct.level0.prefiltered_variance", "filter.direct.level1.prefiltered_variance",
-                                 "filter.indirect.level0.prefiltered_variance",
-                                 "filter.indirect.level1.prefiltered_variance"});
+        std::vector<std::string>{
+            "filter.direct.level0.prefiltered_variance", "filter.direct.level1.prefiltered_variance",
+            "filter.indirect.level0.prefiltered_variance", "filter.indirect.level1.prefiltered_variance"});
   CHECK(expand_layer(layers::kColor, 5).size() == 3);
 
   // Every expanded channel matches its own layer, and no other layer of the same pass.

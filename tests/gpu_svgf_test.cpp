@@ -273,8 +273,8 @@ TEST_CASE("the Vulkan pipeline's dump holds the golden dump's layers, within bou
                                        rgb_plane(in, "albedo"), rgb_plane(in, "emission"));
     const double any = std::numeric_limits<double>::infinity();  // the relative bound alone
     check_rgb_within(rgb_plane(out, "color"), colour, any, 1e-6);
-    check_rgb_within(rgb_plane(dump, layer_name(layers::kTonemapped)), tonemap(rgb_plane(out, "color"), TonemapParams{}),
-                     any, 1e-6);
+    check_rgb_within(rgb_plane(dump, layer_name(layers::kTonemapped)),
+                     tonemap(rgb_plane(out, "color"), TonemapParams{}), any, 1e-6);
     for (const std::string stream : {"direct", "indirect"}) {
       std::string input = layer_name(layers::kVariance, stream);
       for (int level = 0; level < SvgfParams{}.atrous_levels; ++level) {

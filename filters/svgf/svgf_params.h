@@ -1,7 +1,8 @@
 // Every SVGF tunable, declared once: C++ name, type, default, valid range, the paper's symbol and where the
-// value comes from. The table expands into the SvgfParams struct, the CLI flags (`--<name>` with hyphens, as `--sigma-l 4`; app/commands.h),
-// the printed configuration and range checks. The shaders read the values they need from their push blocks
-// (temporal_shared.h, variance_shared.h, atrous_shared.h), which gpu/ fills from SvgfParams.
+// value comes from. The table expands into the SvgfParams struct, the CLI flags (`--<name>` with hyphens, as
+// `--sigma-l 4`; app/commands.h), the printed configuration and range checks. The shaders read the values they
+// need from their push blocks (temporal_shared.h, variance_shared.h, atrous_shared.h), which gpu/ fills from
+// SvgfParams.
 //
 // X(type, name, default, min, max, symbol, source)
 #define RTDR_SVGF_PARAMS(X)                                                                                       \

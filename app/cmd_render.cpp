@@ -1,5 +1,7 @@
 // rtdr render: a scene's frames, one multi-layer EXR per frame (G-buffer, motion, path-traced radiance)
-// plus a PNG preview. --spp N > 1 renders reference frames.
+// plus a PNG preview. --spp N > 1 renders reference frames. --gradients renders A-SVGF's input: each frame with
+// the gradient samples carried from the frame before it (trace/gradients.h), so frames are rendered in order,
+// and a range A-B with A > 0 continues from frame A-1 in --out, or renders frames 0 to A-1 first (not written).
 #include "app/commands.h"
 #include "app/preview.h"
 #include "app/sequence.h"
@@ -9,12 +11,14 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "scenes/gltf_loader.h"
+#include "trace/gradients.h"
 #include "trace/render_frame.h"
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace rtdr {
 namespace {
@@ -25,13 +29,48 @@ struct RenderOptions {
   std::string size = "640x360";
   std::string out = "out/render";
   RenderSettings settings;
+  bool gradients = false;
+  GradientParams gradient;
 };
+
+// With --gradients, frame A-1 of the range A-B: read from --out where a gradient render left it, else rendered
+// from frame 0 (std::nullopt for A = 0). Says which.
+std::optional<Frame> frame_before(const RenderOptions& o, const Scene& scene, const FrameRange& frames, Size size) {
+  if (frames.first == 0) return std::nullopt;
+  const std::string path = frame_path(o.out, frames.first - 1, "exr");
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) {
+    Frame prev = read_exr(path);
+    if (prev.width() != size.width || prev.height() != size.height)
+      throw Error("--gradients: frame " + std::to_string(frames.first - 1) + " in --out ('" + path + "') is " +
+                  std::to_string(prev.width()) + "x" + std::to_string(prev.height()) + ", not " + o.size);
+    if (!prev.uint_channels().count("gradient.source"))
+      throw Error("--gradients: frame " + std::to_string(frames.first - 1) + " in --out ('" + path +
+                  "') was not rendered with --gradients; render from frame 0 or into another --out");
+    std::printf("gradients: continuing from frame %d in %s\n", frames.first - 1, path.c_str());
+    return prev;
+  }
+  std::printf("gradients: frame %d is not in %s: rendering frames 0-%d first (not written)\n", frames.first - 1,
+              o.out.c_str(), frames.first - 1);
+  std::optional<Frame> prev;
+  for (int f = 0; f < frames.first; ++f)
+    prev = render_frame_with_gradients(scene, f, size.width, size.height, o.settings, o.gradient,
+                                       prev ? &*prev : nullptr);
+  return prev;
+}
 
 void run_render(const RenderOptions& o) {
   // Validate every argument before doing any work, so bad input never leaves partial output.
   const Size size = parse_size(o.size);
   const FrameRange frames = parse_frames(o.frames);
   const Scene scene = load_scene(o.scene);
+  if (o.gradients) {
+    validate(o.gradient);
+    if (o.settings.spp != 1)
+      throw Error("--gradients compares two 1-spp samples per gradient pixel: use --spp 1, not " +
+                  std::to_string(o.settings.spp));
+  }
+  std::optional<Frame> prev = o.gradients ? frame_before(o, scene, frames, size) : std::nullopt;
   StagedOutputDir out(o.out);  // the frames appear when the last one is done; a failed run leaves none
 
   const auto start = std::chrono::steady_clock::now();
@@ -39,7 +78,10 @@ void run_render(const RenderOptions& o) {
   for (int f = frames.first; f <= frames.last; ++f) {  // no overflow: last <= kMaxFrameIndex
     TraceStats stats;
     Frame frame;
-    if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
+    if (o.gradients) {
+      frame = render_frame_with_gradients(scene, f, size.width, size.height, o.settings, o.gradient,
+                                          prev ? &*prev : nullptr, &stats);
+    } else if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
       ProgressBar bar("frame " + std::to_string(f) + ", " + std::to_string(o.settings.spp) + " spp", uint64_t(size.height));
       frame = render_frame(scene, f, size.width, size.height, o.settings, &stats, [&](int rows) { bar.advance(uint64_t(rows)); });
     } else {
@@ -49,6 +91,7 @@ void run_render(const RenderOptions& o) {
                           [](const std::string&) { return std::string("render"); });
     write_exr(out.file(frame_name(f, "exr")), frame);
     write_preview_png(out.file(frame_name(f, "png")), frame);
+    if (o.gradients) prev = std::move(frame);
     std::printf("frame %d  t = %.4f s  %.2f Mrays/s  -> %s\n", f, scene.time_of_frame(f), 1e-6 * double(stats.rays) / stats.seconds,
                 frame_path(o.out, f, "exr").c_str());
     total.rays += stats.rays;
@@ -80,6 +123,9 @@ Command add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-bounces", o->settings.trace.max_bounces, "indirect bounces after the primary hit")
       ->check(CLI::Range(0, 1024))->capture_default_str();
+  sub->add_flag("--gradients", o->gradients,
+                "A-SVGF's input: merge gradient samples carried from the previous frame (trace/gradients.h)");
+  add_gradient_flags(sub, o->gradient);
   return {sub, [o] { run_render(*o); }};
 }
 

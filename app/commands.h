@@ -3,6 +3,7 @@
 #pragma once
 
 #include "filters/method.h"
+#include "trace/gradients.h"
 
 #include <CLI/CLI.hpp>
 
@@ -47,7 +48,9 @@ Pixel parse_pixel(const std::string& text, const std::string& flag);
 // --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores (--atrous-levels,
 // --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the method is made.
 void add_method_flags(CLI::App* sub, MethodParams& params);
-// The flag of row `name` of a table whose flags start with `prefix` ("", "eaw-", "tonemap-", "taa-").
+// A-SVGF's gradient sample parameters (trace/gradients.h) as --gradient-<name>, for rtdr render --gradients.
+void add_gradient_flags(CLI::App* sub, GradientParams& params);
+// The flag of row `name` of a table whose flags start with `prefix` ("", "eaw-", "tonemap-", "taa-", "gradient-").
 std::string param_flag(std::string_view prefix, std::string_view name);
 
 }  // namespace rtdr

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/frame.h"        // kMaxFrameIndex
 #include "raster/visibility.h"  // kMaxImageSize: the rasterizer's limit
+#include "trace/gradients.h"
 
 #include <algorithm>
 #include <charconv>
@@ -58,10 +59,12 @@ std::string param_flag(std::string_view prefix, std::string_view name) {
   return flag;
 }
 
-void add_method_flags(CLI::App* sub, MethodParams& p) {
-  // One flag per row of a table, into `table`, the member of p that holds it.
+// One flag per row of a parameter table: expanded inside a block that names the struct holding the values
+// (`table`), the flags' prefix and their help group.
 #define RTDR_PARAM_FLAG(type, name, def, lo, hi, symbol, source) \
   sub->add_option(param_flag(prefix, #name), table.name, std::string(source))->capture_default_str()->group(group);
+
+void add_method_flags(CLI::App* sub, MethodParams& p) {
   {
     SvgfParams& table = p.svgf;
     const char *prefix = "", *group = "SVGF parameters";
@@ -82,7 +85,13 @@ void add_method_flags(CLI::App* sub, MethodParams& p) {
     const char *prefix = "taa-", *group = "TAA parameters";
     RTDR_TAA_PARAMS(RTDR_PARAM_FLAG)
   }
-#undef RTDR_PARAM_FLAG
 }
+
+void add_gradient_flags(CLI::App* sub, GradientParams& table) {
+  const char *prefix = "gradient-", *group = "Gradient samples (with --gradients)";
+  RTDR_GRADIENT_PARAMS(RTDR_PARAM_FLAG)
+}
+
+#undef RTDR_PARAM_FLAG
 
 }  // namespace rtdr

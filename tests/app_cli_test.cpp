@@ -108,6 +108,46 @@ TEST_CASE("a render at an odd size writes every documented layer and no temporar
   CHECK(written == documented);
 }
 
+TEST_CASE("render --gradients adds the documented gradient layers, continues a sequence, and says how") {
+  const fs::path dir = scratch("gradients");
+  const std::string out = (dir / "out").string();
+  const RunResult first = run_rtdr("render --scene pillars --frames 0-2 --size 33x17 --gradients --out " + out, dir);
+  REQUIRE(first.exit_code == 0);
+  // Frames 3-4 continue from frame 2 in --out; frame 7 renders frames 0-6 first, unwritten.
+  const RunResult next = run_rtdr("render --scene pillars --frames 3-4 --size 33x17 --gradients --out " + out, dir);
+  REQUIRE(next.exit_code == 0);
+  CHECK_THAT(next.out, Catch::Contains("continuing from frame 2"));
+  const RunResult later = run_rtdr("render --scene pillars --frames 7 --size 33x17 --gradients --out " + out, dir);
+  REQUIRE(later.exit_code == 0);
+  CHECK_THAT(later.out, Catch::Contains("rendering frames 0-6 first (not written)"));
+  CHECK(count_files(dir / "out") == 2 * 6);
+
+  // Every plain layer and the gradient section's layers of docs/buffers.md.
+  const rtdr::Frame frame = rtdr::read_exr((dir / "out/frame_0004.exr").string());
+  std::set<std::string> written;
+  for (const auto& [name, plane] : frame.float_channels()) written.insert(name);
+  for (const auto& [name, plane] : frame.uint_channels()) written.insert(name);
+  std::set<std::string> expected = documented_channels();
+  expected.insert({"gradient.source", "gradient.prev_direct", "gradient.prev_indirect"});
+  CHECK(written == expected);
+  size_t gradient_pixels = 0;
+  for (const uint32_t s : frame.uint_channel("gradient.source").data) gradient_pixels += s != rtdr::kInvalidId;
+  CHECK(gradient_pixels > 0);
+  CHECK(gradient_pixels <= size_t((33 + 2) / 3) * size_t((17 + 2) / 3));  // one per 3x3 stratum at most
+
+  // Continuing a render of another size, or of frames without gradients, is one line of error and no output.
+  const RunResult resized = run_rtdr("render --scene pillars --frames 3 --size 32x17 --gradients --out " + out, dir);
+  CHECK(resized.exit_code != 0);
+  CHECK_THAT(resized.err, Catch::Contains("is 33x17, not 32x17"));
+  const std::string plain = (dir / "plain").string();
+  REQUIRE(run_rtdr("render --scene pillars --frames 0 --size 33x17 --out " + plain, dir).exit_code == 0);
+  const RunResult mixed = run_rtdr("render --scene pillars --frames 1 --size 33x17 --gradients --out " + plain, dir);
+  CHECK(mixed.exit_code != 0);
+  CHECK_THAT(mixed.err, Catch::Contains("was not rendered with --gradients"));
+  CHECK(count_files(dir / "plain") == 2);
+  CHECK(run_rtdr("render --frames 0 --size 33x17 --gradients --spp 4 --out " + plain, dir).exit_code != 0);
+}
+
 TEST_CASE("option parsers accept what they document and reject the rest") {
   CHECK(rtdr::parse_size("1280x720").width == 1280);
   CHECK(rtdr::parse_size("641x481").height == 481);

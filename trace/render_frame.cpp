@@ -2,6 +2,7 @@
 #include "trace/render_frame.h"
 
 #include "core/color.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "motion/backproject.h"
 #include "trace/sampler.h"
@@ -84,20 +85,23 @@ uint32_t trace_pixel(const TraceContext& c, const SurfaceSample& s, const glm::v
 }  // namespace
 
 TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const RenderSettings& settings, Frame& frame,
-                        const RowsDone& rows_done) {
+                        const RowsDone& rows_done, const std::vector<uint32_t>* seeds) {
   const EmbreeScene embree(scene, g.pose);
   const LightSet lights(scene, g.pose);
   const SurfaceTable surfaces(scene, g.pose);
   const TraceContext context{scene, g.pose, embree, lights, surfaces, settings.trace};
 
   const int width = g.vis.width, height = g.vis.height;
+  if (seeds && seeds->size() != size_t(width) * size_t(height))
+    throw Error("trace_layers: " + std::to_string(seeds->size()) + " seeds for a " + std::to_string(width) + "x" +
+                std::to_string(height) + " frame");
   RadianceLayers layers(frame);
   // Rays per second measure the tracing loop alone (not the BVH build or Embree's one-time start-up).
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint64_t> rays_per_row(size_t(height), 0);  // summed after the loop: no shared counter
   parallel_rows(height, [&](int y) {
     for (int x = 0; x < width; ++x) {
-      const uint32_t seed = pixel_seed(settings.seed, g.index, x, y);
+      const uint32_t seed = seeds ? (*seeds)[g.vis.index(x, y)] : pixel_seed(settings.seed, g.index, x, y);
       layers.seed.data[g.vis.index(x, y)] = seed;
       const SurfaceSample s = g.vis.sample(x, y);
       if (!s.valid()) continue;  // background: every radiance layer stays 0

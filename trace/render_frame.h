@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace rtdr {
 
@@ -35,9 +36,11 @@ struct TraceStats {
 // Called with the number of rows finished since the last call (from worker threads), for progress bars.
 using RowsDone = std::function<void(int rows)>;
 
-// Adds the radiance layers of `geometry`'s frame to `frame` (same size) and returns what it traced.
+// Adds the radiance layers of `geometry`'s frame to `frame` (same size) and returns what it traced. `seeds`, when
+// given, holds every pixel's seed (row-major), in place of pixel_seed: A-SVGF's gradient samples are traced with
+// the previous frame's seeds (trace/gradients.h).
 TraceStats trace_layers(const Scene& scene, const FrameGeometry& geometry, const RenderSettings& settings,
-                        Frame& frame, const RowsDone& rows_done = {});
+                        Frame& frame, const RowsDone& rows_done = {}, const std::vector<uint32_t>* seeds = nullptr);
 
 // A whole frame: G-buffer, motion and radiance layers.
 Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,

@@ -1,0 +1,233 @@
+// Tests of trace/gradients.cpp, A-SVGF's gradient samples [ASVGF18 Sec. 3.1-3.3, Eq. 2-6]: seed reuse makes the
+// gradient of an unchanged pixel exactly 0; at most one sample per stratum; the random selection is uniform; a
+// merged pixel's motion returns to its source; no occluded sample is merged; any thread count gives the same
+// frame; bad input is refused. Frames are rendered in memory at tiny sizes.
+#include "trace/gradients.h"
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "motion/forward_project.h"
+#include "scenes/gltf_loader.h"
+
+#include <catch2/catch.hpp>
+
+#include <bit>
+#include <cmath>
+#include <vector>
+
+using namespace rtdr;
+
+namespace {
+
+// Frames first..last of `scene` rendered with gradient samples, each from the one before.
+std::vector<Frame> render_sequence(const Scene& scene, int first, int last, int width, int height,
+                                   const GradientParams& params = {}) {
+  std::vector<Frame> frames;
+  for (int f = first; f <= last; ++f)
+    frames.push_back(
+        render_frame_with_gradients(scene, f, width, height, {}, params, frames.empty() ? nullptr : &frames.back()));
+  return frames;
+}
+
+float luminance_at(const Frame& frame, const std::string& layer, size_t i) {
+  return luminance(glm::vec3(frame.float_channel(layer + ".R").data[i], frame.float_channel(layer + ".G").data[i],
+                             frame.float_channel(layer + ".B").data[i]));
+}
+
+// The pixels of `frame` that hold a gradient sample.
+std::vector<size_t> gradient_pixels(const Frame& frame) {
+  std::vector<size_t> pixels;
+  const std::vector<uint32_t>& source = frame.uint_channel("gradient.source").data;
+  for (size_t i = 0; i < source.size(); ++i)
+    if (source[i] != kInvalidId) pixels.push_back(i);
+  return pixels;
+}
+
+// A previous frame of `width` x `height` pixels that all see a surface, with luminance l(j) = j.
+PreviousFrame covered_previous(int width, int height) {
+  PreviousFrame p;
+  p.vis = VisibilityBuffer(width, height);
+  const size_t n = size_t(width) * size_t(height);
+  p.vis.instance.assign(n, 0);
+  p.vis.triangle.assign(n, 0);
+  p.vis.depth.assign(n, 1.0f);
+  p.seed.assign(n, 0);
+  p.luminance_direct.resize(n);
+  p.luminance_indirect.assign(n, 0.0f);
+  for (size_t j = 0; j < n; ++j) p.luminance_direct[j] = float(j);
+  p.was_gradient.assign(n, false);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("static scene and camera: every gradient sample re-shades to its source's value bit for bit") {
+  // Nothing moves, so G~ = G and, with the same seed, f_i(G~, xi) = f_{i-1}(G, xi): delta = 0 exactly [Eq. 2].
+  const Scene scene = load_scene("static");
+  const std::vector<Frame> frames = render_sequence(scene, 0, 1, 48, 27);
+  CHECK(gradient_pixels(frames[0]).empty());  // frame 0 has no previous frame
+  const std::vector<size_t> pixels = gradient_pixels(frames[1]);
+  // One per 3x3 stratum of the covered area: 16 x 9 strata at 48x27; most of the frame sees a surface.
+  INFO(pixels.size() << " gradient pixels");
+  CHECK(pixels.size() >= 100);
+  CHECK(pixels.size() <= 16 * 9);
+  for (const size_t i : pixels) {
+    INFO("pixel " << i);
+    CHECK(frames[1].uint_channel("gradient.source").data[i] == i);  // a static camera projects j onto itself
+    CHECK(std::bit_cast<uint32_t>(luminance_at(frames[1], "direct", i)) ==
+          std::bit_cast<uint32_t>(frames[1].float_channel("gradient.prev_direct").data[i]));
+    CHECK(std::bit_cast<uint32_t>(luminance_at(frames[1], "indirect", i)) ==
+          std::bit_cast<uint32_t>(frames[1].float_channel("gradient.prev_indirect").data[i]));
+    CHECK(frames[1].uint_channel("rng.seed").data[i] == frames[0].uint_channel("rng.seed").data[i]);
+  }
+
+  // Without seed reuse the two samples are independent [Eq. 4-5]: delta is non-zero on most lit gradient pixels.
+  GradientParams fresh;
+  fresh.seed_reuse = 0;
+  const std::vector<Frame> independent = render_sequence(scene, 0, 1, 48, 27, fresh);
+  int lit = 0, changed = 0;
+  for (const size_t i : gradient_pixels(independent[1])) {
+    const float before = independent[1].float_channel("gradient.prev_direct").data[i];
+    const float now = luminance_at(independent[1], "direct", i);
+    if (before <= 0.0f && now <= 0.0f) continue;
+    ++lit;
+    changed += before != now;
+  }
+  INFO(changed << " of " << lit << " lit gradient pixels changed");
+  CHECK(lit >= 50);
+  CHECK(changed >= lit * 3 / 4);
+}
+
+TEST_CASE("at most one gradient sample per stratum of the current frame, for stratum sizes 2, 3 and 4") {
+  const Scene scene = load_scene("pillars");
+  for (const int s : {2, 3, 4}) {
+    INFO("stratum size " << s);
+    GradientParams params;
+    params.stratum_size = s;
+    const int width = 48, height = 24;  // multiples of 2, 3 and 4
+    const std::vector<Frame> frames = render_sequence(scene, 10, 11, width, height, params);
+    std::vector<int> per_stratum(size_t(width / s) * size_t(height / s), 0);
+    const std::vector<size_t> pixels = gradient_pixels(frames[1]);
+    for (const size_t i : pixels) ++per_stratum[(i / width / s) * size_t(width / s) + (i % width) / s];
+    for (const int count : per_stratum) CHECK(count <= 1);
+    CHECK(pixels.size() <= size_t(width * height / (s * s)));  // at most 1/s^2 of the pixels
+    CHECK(pixels.size() >= size_t(width * height / (s * s)) / 4);  // and not none: pillars covers the frame
+  }
+}
+
+TEST_CASE("random selection is uniform over a full stratum's pixels (chi-square, 100 frames)") {
+  // 16 x 16 full strata of 3 x 3 pixels, 100 frames: 25600 draws over 9 positions, 2844 expected each.
+  const int s = 3, strata = 16;
+  const PreviousFrame prev = covered_previous(strata * s, strata * s);
+  GradientParams params;
+  std::vector<double> counts(size_t(s * s), 0.0);
+  for (int frame = 1; frame <= 100; ++frame)
+    for (int sy = 0; sy < strata; ++sy)
+      for (int sx = 0; sx < strata; ++sx) {
+        const uint32_t j = select_gradient_source(prev, sx, sy, params, 7u, frame);
+        REQUIRE(j != kInvalidId);
+        const int x = int(j % uint32_t(strata * s)), y = int(j / uint32_t(strata * s));
+        REQUIRE(x / s == sx);
+        REQUIRE(y / s == sy);
+        counts[size_t((y % s) * s + x % s)] += 1.0;
+      }
+  const double expected = 100.0 * strata * strata / (s * s);
+  double chi2 = 0.0;
+  for (const double c : counts) chi2 += (c - expected) * (c - expected) / expected;
+  INFO("chi-square " << chi2 << " (8 degrees of freedom; 26.1 is the 0.1% critical value)");
+  CHECK(chi2 < 26.1);
+}
+
+TEST_CASE("brightest selection, partial strata and seed chains") {
+  const PreviousFrame prev = covered_previous(10, 7);  // strata of 3: the last column and row are partial
+  GradientParams brightest;
+  brightest.selection = 1;
+  // l(j) = j: the brightest pixel of a stratum is its last, bottom-right one.
+  CHECK(select_gradient_source(prev, 0, 0, brightest, 0u, 1) == uint32_t(2 * 10 + 2));
+  CHECK(select_gradient_source(prev, 3, 2, brightest, 0u, 1) == uint32_t(6 * 10 + 9));  // a 1 x 1 stratum
+  // A random pick in a partial stratum stays inside it.
+  const GradientParams random;
+  for (int frame = 0; frame < 50; ++frame) {
+    const uint32_t j = select_gradient_source(prev, 3, 1, random, 0u, frame);  // column 9, rows 3-5
+    CHECK(j % 10 == 9);
+    CHECK(j / 10 >= 3);
+    CHECK(j / 10 <= 5);
+  }
+  // Without chains a pixel that was a gradient sample is not picked again.
+  PreviousFrame chained = prev;
+  chained.was_gradient.assign(chained.was_gradient.size(), true);
+  GradientParams no_chains;
+  no_chains.seed_chains = 0;
+  CHECK(select_gradient_source(chained, 1, 1, no_chains, 0u, 3) == kInvalidId);
+  no_chains.selection = 1;
+  CHECK(select_gradient_source(chained, 1, 1, no_chains, 0u, 3) == kInvalidId);
+  CHECK(select_gradient_source(chained, 1, 1, GradientParams{}, 0u, 3) != kInvalidId);  // chains allowed
+}
+
+TEST_CASE("a merged pixel's motion returns to its source pixel, and no occluded sample is merged") {
+  // pillars: eleven pillars move in front of a lit wall, so samples move, leave and get hidden.
+  const Scene scene = load_scene("pillars");
+  const int width = 160, height = 90;  // large enough that the pillars move by pixels from frame to frame
+  const std::vector<Frame> frames = render_sequence(scene, 20, 21, width, height);
+  const Frame& cur = frames[1];
+  const std::vector<size_t> pixels = gradient_pixels(cur);
+  REQUIRE(pixels.size() >= 50);
+  // Frame 21 as rasterized, before the merge: what the occlusion test saw.
+  const FrameGeometry plain = rasterize_frame(scene, 21, width, height);
+  const PreviousFrame prev = PreviousFrame::from_frame(frames[0]);
+  int moved = 0;
+  for (const size_t i : pixels) {
+    const uint32_t j = cur.uint_channel("gradient.source").data[i];
+    const glm::vec2 target(float(i % width) + 0.5f, float(i / width) + 0.5f);
+    const glm::vec2 source(float(j % width) + 0.5f, float(j / width) + 0.5f);
+    const glm::vec2 motion(cur.float_channel("motion.X").data[i], cur.float_channel("motion.Y").data[i]);
+    INFO("pixel " << i << " from " << j);
+    CHECK(std::abs(target.x + motion.x - source.x) <= 1e-3f);
+    CHECK(std::abs(target.y + motion.y - source.y) <= 1e-3f);
+    moved += i != j;
+    const ForwardProjection f =
+        forward_project(scene, plain.pose, plain.view, plain.vis, prev.vis.sample(int(j % width), int(j / width)));
+    CHECK(f.on_screen);
+    CHECK_FALSE(f.occluded);
+    CHECK(size_t(f.pixel.y) * width + size_t(f.pixel.x) == i);
+    CHECK(plain.vis.instance[i] != kInvalidId);
+  }
+  CHECK(moved > 0);  // the scene moves: some samples land elsewhere
+}
+
+TEST_CASE("gradient frames are bit-identical with 1 and 2 threads") {
+  const Scene scene = load_scene("pillars");
+  std::vector<std::vector<Frame>> runs;
+  for (const int threads : {1, 2}) {
+    set_thread_count(threads);
+    runs.push_back(render_sequence(scene, 5, 7, 40, 24));
+  }
+  set_thread_count(0);
+  for (size_t f = 0; f < runs[0].size(); ++f) {
+    INFO("frame " << f);
+    for (const auto& [name, plane] : runs[0][f].float_channels()) {
+      INFO(name);
+      const std::vector<float>& other = runs[1][f].float_channel(name).data;
+      REQUIRE(other.size() == plane.data.size());
+      for (size_t i = 0; i < other.size(); ++i)
+        CHECK(std::bit_cast<uint32_t>(other[i]) == std::bit_cast<uint32_t>(plane.data[i]));
+    }
+    for (const auto& [name, plane] : runs[0][f].uint_channels()) CHECK(runs[1][f].uint_channel(name).data == plane.data);
+  }
+}
+
+TEST_CASE("gradient samples refuse a previous frame of another size, more than 1 spp and bad parameters") {
+  const Scene scene = load_scene("cornell");
+  const Frame small = render_frame_with_gradients(scene, 0, 16, 9, {}, {}, nullptr);
+  CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 18, 9, {}, {}, &small), Error);
+  RenderSettings many;
+  many.spp = 4;
+  CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, many, {}, &small), Error);
+  GradientParams bad;
+  bad.stratum_size = 1;
+  CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, bad, &small), Error);
+  Frame no_seeds = small;
+  no_seeds = Frame(16, 9);
+  CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &no_seeds), Error);
+}

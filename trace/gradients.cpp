@@ -1,0 +1,175 @@
+// A-SVGF's temporal gradient samples, the render side [ASVGF18 Sec. 3.1-3.3, Eq. 2-6]. See gradients.h.
+#include "trace/gradients.h"
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "motion/backproject.h"
+#include "motion/forward_project.h"
+#include "trace/sampler.h"
+
+#include <optional>
+#include <string>
+
+namespace rtdr {
+
+std::vector<ParamInfo> gradient_param_table() { return {RTDR_GRADIENT_PARAMS(RTDR_PARAM_ROW)}; }
+std::vector<double> param_values(const GradientParams& params) { return {RTDR_GRADIENT_PARAMS(RTDR_PARAM_VALUE)}; }
+void validate(const GradientParams& p) { check_params("gradient", gradient_param_table(), param_values(p)); }
+
+namespace {
+
+// Salts the selection's hash, so that the stratum's choice is independent of the pixel seeds made from the
+// same global seed (trace/sampler.h's pixel_seed).
+constexpr uint32_t kSelectionSalt = 0x41535647u;  // "ASVG"
+
+// The luminance of a frame's demodulated stream `layer` ("direct" or "indirect") at every pixel.
+std::vector<float> luminance_of(const Frame& frame, const std::string& layer) {
+  const FloatPlane &r = frame.float_channel(layer + ".R"), &g = frame.float_channel(layer + ".G"),
+                   &b = frame.float_channel(layer + ".B");
+  std::vector<float> l(r.data.size());
+  for (size_t i = 0; i < l.size(); ++i) l[i] = luminance(glm::vec3(r.data[i], g.data[i], b.data[i]));
+  return l;
+}
+
+}  // namespace
+
+PreviousFrame PreviousFrame::from_frame(const Frame& frame) {
+  PreviousFrame p;
+  p.vis = VisibilityBuffer(frame.width(), frame.height());
+  p.vis.instance = frame.uint_channel("id.instance").data;
+  p.vis.triangle = frame.uint_channel("id.triangle").data;
+  const FloatPlane &u = frame.float_channel("bary.U"), &v = frame.float_channel("bary.V");
+  for (size_t i = 0; i < p.vis.bary.size(); ++i) p.vis.bary[i] = {u.data[i], v.data[i]};
+  p.vis.depth = frame.float_channel("depth.Z").data;
+  p.seed = frame.uint_channel("rng.seed").data;
+  p.luminance_direct = luminance_of(frame, "direct");
+  p.luminance_indirect = luminance_of(frame, "indirect");
+  p.was_gradient.assign(p.seed.size(), false);
+  if (frame.uint_channels().count("gradient.source")) {
+    const UIntPlane& source = frame.uint_channel("gradient.source");
+    for (size_t i = 0; i < source.data.size(); ++i) p.was_gradient[i] = source.data[i] != kInvalidId;
+  }
+  return p;
+}
+
+uint32_t select_gradient_source(const PreviousFrame& prev, int sx, int sy, const GradientParams& params,
+                                uint32_t global_seed, int frame_index) {
+  const int s = params.stratum_size, width = prev.vis.width, height = prev.vis.height;
+  // The stratum's pixels: s x s, fewer at the right and bottom edges.
+  const int x0 = sx * s, y0 = sy * s;
+  const int columns = std::min(s, width - x0), rows = std::min(s, height - y0);
+  // A pixel may become a gradient sample when it sees a surface and, without chains, was not one itself.
+  const auto eligible = [&](size_t j) {
+    return prev.vis.instance[j] != kInvalidId && (params.seed_chains != 0 || !prev.was_gradient[j]);
+  };
+  if (params.selection == 0) {
+    // Random [ASVGF18 Sec. 3.3]: one of the stratum's pixels, uniformly, by a hash of (seed, frame, stratum).
+    const uint32_t h = hash_combine(
+        hash_combine(hash_combine(hash_u32(global_seed ^ kSelectionSalt), uint32_t(frame_index)), uint32_t(sx)),
+        uint32_t(sy));
+    const int k = int(h % uint32_t(columns * rows));
+    const size_t j = prev.vis.index(x0 + k % columns, y0 + k / columns);
+    return eligible(j) ? uint32_t(j) : kInvalidId;
+  }
+  // Brightest (Q2RTX): the eligible pixel of largest direct + indirect luminance; the first in row order on ties.
+  uint32_t best = kInvalidId;
+  float best_luminance = 0.0f;
+  for (int y = y0; y < y0 + rows; ++y)
+    for (int x = x0; x < x0 + columns; ++x) {
+      const size_t j = prev.vis.index(x, y);
+      const float l = prev.luminance_direct[j] + prev.luminance_indirect[j];
+      if (eligible(j) && (best == kInvalidId || l > best_luminance)) best = uint32_t(j), best_luminance = l;
+    }
+  return best;
+}
+
+std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeometry& cur, const PreviousFrame& prev,
+                                             const GradientParams& params, uint32_t global_seed) {
+  const int width = cur.vis.width, height = cur.vis.height, s = params.stratum_size;
+  if (prev.vis.width != width || prev.vis.height != height)
+    throw Error("gradient samples: the previous frame is " + std::to_string(prev.vis.width) + "x" +
+                std::to_string(prev.vis.height) + " but frame " + std::to_string(cur.index) + " is " +
+                std::to_string(width) + "x" + std::to_string(height));
+  const int strata_x = (width + s - 1) / s, strata_y = (height + s - 1) / s;
+
+  // Steps 2-4, per stratum of frame i-1: pick j, forward project it, keep it where frame i sees it. Stratum rows
+  // run in parallel; each writes only its own slots.
+  std::vector<std::optional<GradientSample>> candidates(size_t(strata_x) * size_t(strata_y));
+  parallel_rows(strata_y, [&](int sy) {
+    for (int sx = 0; sx < strata_x; ++sx) {
+      const uint32_t j = select_gradient_source(prev, sx, sy, params, global_seed, cur.index);
+      if (j == kInvalidId) continue;
+      const SurfaceSample sample = prev.vis.sample(int(j % uint32_t(width)), int(j / uint32_t(width)));
+      // Step 3: the same point at frame i's pose, seen by frame i's camera [ASVGF18 Sec. 3.1].
+      const ForwardProjection f = forward_project(scene, cur.pose, cur.view, cur.vis, sample);
+      // Step 4: off screen or behind the camera, hidden by frame i's depth buffer, or where frame i sees nothing.
+      if (!f.on_screen || f.occluded || cur.vis.instance[cur.vis.index(f.pixel.x, f.pixel.y)] == kInvalidId) continue;
+      candidates[size_t(sy) * size_t(strata_x) + size_t(sx)] = GradientSample{j, f.pixel, sample, f.depth};
+    }
+  });
+
+  // Step 5: at most one per stratum of frame i, the smallest source index winning (deterministic; a GPU port's
+  // atomicMin on j gives the same).
+  std::vector<const GradientSample*> winner(candidates.size(), nullptr);
+  for (const std::optional<GradientSample>& c : candidates) {
+    if (!c) continue;
+    const GradientSample*& w = winner[size_t(c->target.y / s) * size_t(strata_x) + size_t(c->target.x / s)];
+    if (!w || c->source < w->source) w = &*c;
+  }
+  std::vector<GradientSample> samples;
+  for (const GradientSample* w : winner)
+    if (w) samples.push_back(*w);
+  return samples;
+}
+
+Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width, int height,
+                                  const RenderSettings& settings, const GradientParams& params, const Frame* prev,
+                                  TraceStats* stats, const RowsDone& rows_done) {
+  validate(params);
+  if (settings.spp != 1)
+    throw Error("gradient samples compare two 1-spp samples: render them with --spp 1, not " +
+                std::to_string(settings.spp));
+  // Step 1: frame i as usual.
+  FrameGeometry g = rasterize_frame(scene, frame_index, width, height);
+  std::vector<uint32_t> seeds(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) seeds[g.vis.index(x, y)] = pixel_seed(settings.seed, frame_index, x, y);
+
+  // Steps 2-5, then 6: merge each sample and its seed into the visibility buffer at jbar [Fig. 2d, Eq. 6].
+  PreviousFrame previous;
+  std::vector<GradientSample> samples;
+  if (prev) {
+    previous = PreviousFrame::from_frame(*prev);
+    samples = gradient_samples(scene, g, previous, params, settings.seed);
+  }
+  for (const GradientSample& s : samples) {
+    const size_t i = g.vis.index(s.target.x, s.target.y);
+    g.vis.instance[i] = s.sample.instance;
+    g.vis.triangle[i] = s.sample.triangle;
+    g.vis.bary[i] = s.sample.bary;
+    g.vis.depth[i] = s.depth;
+    if (params.seed_reuse != 0) seeds[i] = previous.seed[s.source];  // xi_{i,jbar} := xi_{i-1,j} [ASVGF18 Eq. 6]
+  }
+
+  // Step 7: the G-buffer, motion and shading of the merged buffer; jbar's shading is f_i(G~, xi_{i-1,j}).
+  Frame frame(width, height);
+  write_gbuffer_layers(scene, g, frame);
+  write_motion_layers(scene, g, frame);
+  const TraceStats traced = trace_layers(scene, g, settings, frame, rows_done, &seeds);
+  if (stats) *stats = traced;
+
+  // Step 8: the source pixel, and f_{i-1}(G, xi_{i-1,j}) as luminance, beside each gradient sample [ASVGF18 Eq. 2].
+  UIntPlane& source = frame.add_uint("gradient.source", kInvalidId);
+  FloatPlane& prev_direct = frame.add_float("gradient.prev_direct");
+  FloatPlane& prev_indirect = frame.add_float("gradient.prev_indirect");
+  for (const GradientSample& s : samples) {
+    const size_t i = g.vis.index(s.target.x, s.target.y);
+    source.data[i] = s.source;
+    prev_direct.data[i] = previous.luminance_direct[s.source];
+    prev_indirect.data[i] = previous.luminance_indirect[s.source];
+  }
+  return frame;
+}
+
+}  // namespace rtdr

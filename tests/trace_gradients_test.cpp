@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <bit>
+#include <optional>
 #include <cmath>
 #include <vector>
 
@@ -230,4 +231,70 @@ TEST_CASE("gradient samples refuse a previous frame of another size, more than 1
   Frame no_seeds = small;
   no_seeds = Frame(16, 9);
   CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &no_seeds), Error);
+}
+
+TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene; with reuse it is lower") {
+  // Static scene, independent seeds: f_i and f_{i-1} are independent samples of the same pixel, so
+  // Var(delta) = Var(f_i) + Var(f_{i-1}) - 2 Cov = 2 Var(f) [ASVGF18 Eq. 4-5]. Var(f) is each pixel's own 1-spp
+  // variance across frames (plain renders of the same frames), averaged over the pixels in proportion to how
+  // often each was a gradient pixel; E[delta] = 0, so Var(delta) is the mean of delta^2. The direct stream only:
+  // its luminance is far less heavy-tailed than the indirect one's.
+  const Scene scene = load_scene("static");
+  const int width = 24, height = 18, frames = 400;
+  const size_t n = size_t(width) * size_t(height);
+  GradientParams fresh;
+  fresh.seed_reuse = 0;
+  std::vector<double> sum(n, 0.0), sum2(n, 0.0);
+  std::vector<int> picked(n, 0);
+  double delta2 = 0.0;
+  long deltas = 0;
+  std::optional<Frame> prev;
+  for (int f = 0; f < frames; ++f) {
+    Frame frame = render_frame_with_gradients(scene, f, width, height, {}, fresh, prev ? &*prev : nullptr);
+    const Frame plain = render_frame(scene, f, width, height, {});
+    for (size_t i = 0; i < n; ++i) {
+      const double l = luminance_at(plain, "direct", i);
+      sum[i] += l;
+      sum2[i] += l * l;
+    }
+    for (const size_t i : gradient_pixels(frame)) {
+      const double d = double(luminance_at(frame, "direct", i)) - frame.float_channel("gradient.prev_direct").data[i];
+      delta2 += d * d;
+      ++deltas;
+      ++picked[i];
+    }
+    prev = std::move(frame);
+  }
+  double var_f = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double mean = sum[i] / frames;
+    var_f += picked[i] * (sum2[i] / frames - mean * mean) * frames / (frames - 1);
+  }
+  var_f /= double(deltas);
+  const double ratio = delta2 / double(deltas) / (2.0 * var_f);
+  INFO(deltas << " gradient samples: Var(delta) = " << delta2 / double(deltas) << ", 2 Var(f) = " << 2.0 * var_f
+              << ", ratio " << ratio);
+  CHECK(deltas >= 10000);
+  CHECK(ratio == Approx(1.0).margin(0.1));
+  WARN("Eq. 4-5 on static, " << deltas << " samples: Var(delta) / (2 Var(f)) = " << ratio);
+
+  // With reuse, on the slowly moving pillars, the two samples share their random numbers: Var(delta) falls.
+  double with_reuse = 0.0, without_reuse = 0.0;
+  for (const int reuse : {1, 0}) {
+    GradientParams params;
+    params.seed_reuse = reuse;
+    const Scene pillars = load_scene("pillars");
+    double d2 = 0.0;
+    long count = 0;
+    const std::vector<Frame> run = render_sequence(pillars, 0, 20, 48, 27, params);
+    for (const Frame& frame : run)
+      for (const size_t i : gradient_pixels(frame)) {
+        const double d = double(luminance_at(frame, "direct", i)) - frame.float_channel("gradient.prev_direct").data[i];
+        d2 += d * d;
+        ++count;
+      }
+    (reuse ? with_reuse : without_reuse) = d2 / double(count);
+  }
+  WARN("Eq. 4-5 on pillars: Var(delta) with seed reuse " << with_reuse << ", without " << without_reuse);
+  CHECK(with_reuse < 0.5 * without_reuse);
 }

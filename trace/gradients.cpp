@@ -149,7 +149,10 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
     g.vis.triangle[i] = s.sample.triangle;
     g.vis.bary[i] = s.sample.bary;
     g.vis.depth[i] = s.depth;
-    if (params.seed_reuse != 0) seeds[i] = previous.seed[s.source];  // xi_{i,jbar} := xi_{i-1,j} [ASVGF18 Eq. 6]
+    // delta is a random variable of both frames' random numbers [ASVGF18 Eq. 3]. With independent seeds its
+    // variance is the sum of both samples' [ASVGF18 Eq. 4] [ASVGF18 Eq. 5]; with the previous seed they share
+    // their random numbers and most of the noise cancels: xi_{i,jbar} := xi_{i-1,j} [ASVGF18 Eq. 6].
+    if (params.seed_reuse != 0) seeds[i] = previous.seed[s.source];
   }
 
   // Step 7: the G-buffer, motion and shading of the merged buffer; jbar's shading is f_i(G~, xi_{i-1,j}).

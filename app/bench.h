@@ -22,6 +22,7 @@ struct BenchOptions {
   std::string method = "svgf";   // --stage filter
   std::string backend = "cpu";   // --stage filter: cpu, vulkan or cpu,vulkan
   int submits = 1;               // --stage filter, vulkan: each frame's batch submitted this often, the last timed
+  GradientParams gradient;       // --stage gradients: --gradient-stratum-size 3, ...
   MethodParams params;           // --stage filter: the method's parameters (--atrous-levels 4, --kernel-size 3, ...)
 };
 
@@ -51,5 +52,6 @@ std::vector<std::string> bench_scene_list(const std::string& text);
 void bench_raster(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_trace(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_filter(const BenchOptions& o, Size size, std::ostream* csv);
+void bench_gradients(const BenchOptions& o, Size size, std::ostream* csv);
 
 }  // namespace rtdr

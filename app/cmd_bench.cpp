@@ -3,6 +3,7 @@
 //   --stage raster: visibility buffer, G-buffer resolve and motion back-projection (bench_raster.cpp)
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
+//   --stage gradients: a 1-spp frame with and without A-SVGF's gradient samples (bench_gradients.cpp)
 //   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
 //                   default stage when --backend is given
 #include "app/bench.h"
@@ -37,8 +38,10 @@ void run_bench(const BenchOptions& o) {
     bench_trace(o, size, csv_out);
   else if (o.stage == "filter")
     bench_filter(o, size, csv_out);
+  else if (o.stage == "gradients")
+    bench_gradients(o, size, csv_out);
   else
-    throw Error("--stage '" + o.stage + "' is not one of: raster, trace, filter");
+    throw Error("--stage '" + o.stage + "' is not one of: raster, trace, gradients, filter");
   if (!o.csv.empty()) {
     write_text_file(o.csv, csv.str());
     std::printf("wrote %s\n", o.csv.c_str());
@@ -50,7 +53,7 @@ void run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "time a stage on the shipped scenes (median after warm-up)");
-  sub->add_option("--stage", o->stage, "what to time: raster, trace, filter")->capture_default_str();
+  sub->add_option("--stage", o->stage, "what to time: raster, trace, gradients, filter")->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--scenes", o->scenes, "comma-separated scene names, or all")->capture_default_str();
   sub->add_option("--runs", o->runs, "timed runs (the median is reported)")->check(CLI::Range(1, 10000))->capture_default_str();
@@ -65,6 +68,7 @@ Command add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   add_method_flags(sub, o->params);  // --stage filter
+  add_gradient_flags(sub, o->gradient);  // --stage gradients
   return {sub, [o, sub] {
             // --backend alone means the filter stage, on pillars, 5 runs (a 1080p CPU frame takes seconds).
             if (sub->count("--backend") > 0 && sub->count("--stage") == 0) o->stage = "filter";

@@ -168,6 +168,26 @@ TEST_CASE("option parsers accept what they document and reject the rest") {
     CHECK_THROWS_WITH(rtdr::parse_pixel(bad, "--pixel"), Catch::Contains("--pixel"));
 }
 
+TEST_CASE("rtdr bench --stage gradients times a frame with and without gradient samples") {
+  const fs::path dir = scratch("bench_gradients");
+  const fs::path csv = dir / "bench.csv";
+  const RunResult r = run_rtdr("bench --stage gradients --scenes cornell --size 30x18 --runs 1 --warmup 0 "
+                               "--gradient-stratum-size 2 --csv " + csv.string(), dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("strata of 2"));
+  const std::string text = read_file(csv);
+  for (const char* metric : {"plain_ms", "gradients_ms", "ratio", "gradient_share"})
+    CHECK_THAT(text, Catch::Contains(std::string("gradients,cornell,30,18,")) && Catch::Contains(metric));
+  // The share of gradient pixels: at most one per 2x2 stratum, 25%.
+  const std::regex share("gradient_share,([0-9.e-]+)");
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, share));
+  CHECK(std::stod(m[1].str()) > 0.0);
+  CHECK(std::stod(m[1].str()) <= 0.25);
+  CHECK(run_rtdr("bench --stage gradients --size 30x18 --runs 1 --gradient-stratum-size 1", dir).exit_code != 0);
+}
+
 TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, on each back end") {
   const fs::path dir = scratch("bench");
   std::string backends = "cpu";

@@ -233,7 +233,7 @@ TEST_CASE("gradient samples refuse a previous frame of another size, more than 1
   CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &no_seeds), Error);
 }
 
-TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene; with reuse it is lower") {
+TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene, with reuse it is lower") {
   // Static scene, independent seeds: f_i and f_{i-1} are independent samples of the same pixel, so
   // Var(delta) = Var(f_i) + Var(f_{i-1}) - 2 Cov = 2 Var(f) [ASVGF18 Eq. 4-5]. Var(f) is each pixel's own 1-spp
   // variance across frames (plain renders of the same frames), averaged over the pixels in proportion to how

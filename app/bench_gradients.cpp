@@ -8,11 +8,18 @@
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 
+#include <malloc.h>
+
 #include <cstdio>
 
 namespace rtdr {
 
 void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) {
+  // Each run builds a new frame of some 200 MB at 720p and drops the last one. By default glibc hands such blocks
+  // back to the kernel and faults them in again, which costs more than the gradient samples and varies from run to
+  // run by a factor of three. Keep freed memory in the process, so that both columns time the rendering.
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   std::printf("%-14s %9s %10s %14s %7s %10s   (median of %d runs, %d threads, strata of %d)\n", "scene", "size",
               "plain ms", "gradients ms", "ratio", "gradients", o.runs, thread_count(), o.gradient.stratum_size);
   const RenderSettings settings;  // 1 spp, seed 0: what A-SVGF gets
@@ -20,8 +27,9 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
     const Scene scene = load_scene(name);
     const int f = int(scene.fps / 2);
     const Frame prev = render_frame_with_gradients(scene, f - 1, size.width, size.height, settings, o.gradient, nullptr);
+    Frame plain;
     const double plain_ms =
-        median_ms(o.warmup, o.runs, [&] { render_frame(scene, f, size.width, size.height, settings); });
+        median_ms(o.warmup, o.runs, [&] { plain = render_frame(scene, f, size.width, size.height, settings); });
     Frame frame;
     const double gradient_ms = median_ms(o.warmup, o.runs, [&] {
       frame = render_frame_with_gradients(scene, f, size.width, size.height, settings, o.gradient, &prev);

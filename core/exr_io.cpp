@@ -15,6 +15,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTestFile.h>
 
 #include <algorithm>
@@ -223,6 +224,10 @@ Frame read_pixels(const std::string& path, Imf::InputFile& file) {
 
   Frame frame(window.max.x + 1, window.max.y + 1);
   frame.source = path;
+  for (auto a = file.header().begin(); a != file.header().end(); ++a)
+    if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute());
+        text && std::string(a.name()).rfind("rtdr.", 0) == 0)
+      frame.attributes[a.name()] = text->value();
   Imf::FrameBuffer buffer;
   for (auto channel = file.header().channels().begin(); channel != file.header().channels().end(); ++channel) {
     const std::string name = channel.name();
@@ -256,6 +261,7 @@ void write_exr(const std::string& path, const Frame& frame) {
   // zlib over blocks of 16 scanlines), and one channel per plane.
   Imf::Header header(frame.width(), frame.height());
   header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [name, value] : frame.attributes) header.insert(name, Imf::StringAttribute(value));
   Imf::FrameBuffer buffer;
   for (const auto& [name, plane] : frame.float_channels()) {
     assert(plane.width == frame.width() && plane.height == frame.height());

@@ -14,12 +14,13 @@
 
 namespace rtdr {
 
-// Writes every channel of `frame` to `path`, atomically (core/atomic_file.h): on failure nothing appears
+// Writes every channel of `frame`, and its attributes as string attributes of the header, to `path`, atomically (core/atomic_file.h): on failure nothing appears
 // at `path` and rtdr::Error names the file.
 void write_exr(const std::string& path, const Frame& frame);
 
 // Reads a scanline or tiled EXR whose data window starts at (0, 0). FLOAT and HALF channels become float
-// channels, UINT channels become uint channels. Sets Frame::source to `path`. Any problem (missing file,
+// channels, UINT channels become uint channels; string attributes whose names start with "rtdr." become
+// Frame::attributes. Sets Frame::source to `path`. Any problem (missing file,
 // not an EXR, truncated, subsampled channels, an offset data window) throws a one-line rtdr::Error naming
 // the file.
 Frame read_exr(const std::string& path);

@@ -74,6 +74,9 @@ class Frame {
 
   // Where the frame came from (a file path), used to make error messages name the file.
   std::string source;
+  // Text attributes of the frame, written to and read from the EXR header as string attributes: how it was
+  // made ("rtdr.scene", "rtdr.gradient.stratum_size", ...), so that a later pass can check what it reads.
+  std::map<std::string, std::string> attributes;
 
  private:
   std::vector<glm::vec3> get_group3(const std::string& layer, const char* const suffixes[3]) const;

@@ -135,7 +135,13 @@ TEST_CASE("render --gradients adds the documented gradient layers, continues a s
   CHECK(gradient_pixels > 0);
   CHECK(gradient_pixels <= size_t((33 + 2) / 3) * size_t((17 + 2) / 3));  // one per 3x3 stratum at most
 
-  // Continuing a render of another size, or of frames without gradients, is one line of error and no output.
+  // Continuing a render of another size, other gradient parameters, or of frames without gradients, is one line
+  // of error and no output.
+  const RunResult restrided =
+      run_rtdr("render --scene pillars --frames 5 --size 33x17 --gradients --gradient-stratum-size 2 --out " + out, dir);
+  CHECK(restrided.exit_code != 0);
+  CHECK_THAT(restrided.err, Catch::Contains("rtdr.gradient.stratum_size = 3, this frame with 2"));
+  CHECK(std::count(restrided.err.begin(), restrided.err.end(), '\n') == 1);
   const RunResult resized = run_rtdr("render --scene pillars --frames 3 --size 32x17 --gradients --out " + out, dir);
   CHECK(resized.exit_code != 0);
   CHECK_THAT(resized.err, Catch::Contains("is 33x17, not 32x17"));

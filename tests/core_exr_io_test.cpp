@@ -197,6 +197,18 @@ TEST_CASE("write_exr then read_exr is bit-exact for float and uint channels") {
   }
 }
 
+TEST_CASE("write_exr then read_exr keeps the frame's rtdr.* attributes") {
+  TempDir dir;
+  Frame frame = make_test_frame(4, 3);
+  frame.attributes = {{"rtdr.scene", "pillars"}, {"rtdr.gradient.stratum_size", "3"}, {"rtdr.empty", ""}};
+  rtdr::write_exr(dir.file("a.exr"), frame);
+  const Frame back = rtdr::read_exr(dir.file("a.exr"));
+  CHECK(back.attributes == frame.attributes);
+  check_bit_exact(frame, back);
+  // Only string attributes named rtdr.* are read: OpenEXR's own header attributes are not the frame's.
+  CHECK(back.attributes.count("compression") == 0);
+}
+
 TEST_CASE("write_exr keeps NaN and infinity bits (it stores, it does not judge)") {
   TempDir dir;
   Frame frame(3, 2);

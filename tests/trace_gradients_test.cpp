@@ -228,9 +228,25 @@ TEST_CASE("gradient samples refuse a previous frame of another size, more than 1
   GradientParams bad;
   bad.stratum_size = 1;
   CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, bad, &small), Error);
-  Frame no_seeds = small;
-  no_seeds = Frame(16, 9);
+  Frame no_seeds = Frame(16, 9);
+  no_seeds.attributes = small.attributes;
   CHECK_THROWS_AS(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &no_seeds), Error);
+  // The previous frame records its scene, seed and parameters; another sequence is refused, naming what differs.
+  CHECK(small.attributes.at("rtdr.scene") == "cornell");
+  CHECK(small.attributes.at("rtdr.gradient.stratum_size") == "3");
+  GradientParams other;
+  other.stratum_size = 4;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, {}, other, &small),
+                    Catch::Contains("rtdr.gradient.stratum_size = 3, this frame with 4"));
+  RenderSettings reseeded;
+  reseeded.seed = 9;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, reseeded, {}, &small), Catch::Contains("rtdr.seed"));
+  CHECK_THROWS_WITH(render_frame_with_gradients(load_scene("static"), 1, 16, 9, {}, {}, &small),
+                    Catch::Contains("rtdr.scene = cornell"));
+  Frame unrecorded = small;
+  unrecorded.attributes.clear();
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &unrecorded),
+                    Catch::Contains("does not record"));
 }
 
 TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene, with reuse it is lower") {

@@ -8,6 +8,7 @@
 #include "motion/forward_project.h"
 #include "trace/sampler.h"
 
+#include <map>
 #include <optional>
 #include <string>
 
@@ -30,6 +31,31 @@ std::vector<float> luminance_of(const Frame& frame, const std::string& layer) {
   std::vector<float> l(r.data.size());
   for (size_t i = 0; i < l.size(); ++i) l[i] = luminance(glm::vec3(r.data[i], g.data[i], b.data[i]));
   return l;
+}
+
+// What a frame with gradient samples records in its header, so that the next frame can check it continues the
+// same sequence: the scene, the global seed and every gradient parameter.
+std::map<std::string, std::string> gradient_attributes(const Scene& scene, uint32_t global_seed,
+                                                       const GradientParams& params) {
+  std::map<std::string, std::string> a = {{"rtdr.scene", scene.name}, {"rtdr.seed", std::to_string(global_seed)}};
+  const std::vector<ParamInfo> table = gradient_param_table();
+  const std::vector<double> values = param_values(params);
+  for (size_t k = 0; k < table.size(); ++k)
+    a["rtdr.gradient." + table[k].name] = std::to_string(int64_t(values[k]));  // every row is an int
+  return a;
+}
+
+// Throws rtdr::Error naming the first attribute of `expected` that `prev` lacks or holds another value of.
+void require_same_sequence(const Frame& prev, const std::map<std::string, std::string>& expected) {
+  for (const auto& [name, value] : expected) {
+    const auto it = prev.attributes.find(name);
+    const std::string what = prev.source.empty() ? std::string("the previous frame") : "'" + prev.source + "'";
+    if (it == prev.attributes.end())
+      throw Error(what + " does not record " + name + ": it was not rendered with gradient samples");
+    if (it->second != value)
+      throw Error(what + " was rendered with " + name + " = " + it->second + ", this frame with " + value +
+                  "; gradient samples continue one sequence");
+  }
 }
 
 }  // namespace
@@ -139,7 +165,9 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
   // Steps 2-5, then 6: merge each sample and its seed into the visibility buffer at jbar [Fig. 2d, Eq. 6].
   PreviousFrame previous;
   std::vector<GradientSample> samples;
+  const std::map<std::string, std::string> attributes = gradient_attributes(scene, settings.seed, params);
   if (prev) {
+    require_same_sequence(*prev, attributes);
     previous = PreviousFrame::from_frame(*prev);
     samples = gradient_samples(scene, g, previous, params, settings.seed);
   }
@@ -157,6 +185,7 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
 
   // Step 7: the G-buffer, motion and shading of the merged buffer; jbar's shading is f_i(G~, xi_{i-1,j}).
   Frame frame(width, height);
+  frame.attributes = attributes;
   write_gbuffer_layers(scene, g, frame);
   write_motion_layers(scene, g, frame);
   const TraceStats traced = trace_layers(scene, g, settings, frame, rows_done, &seeds);

@@ -96,8 +96,10 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
 
 // Steps 1-8: frame `frame_index` rendered with its gradient samples merged, with the layers of render_frame plus
 // gradient.source (uint: j where the pixel is a gradient sample, else kInvalidId), gradient.prev_direct and
-// gradient.prev_indirect (frame i-1's luminance at j; 0 elsewhere). `prev` is frame i-1 as this function
-// rendered it, or null for the first frame. Needs settings.spp == 1: a gradient compares two 1-spp samples.
+// gradient.prev_indirect (frame i-1's luminance at j; 0 elsewhere), and the header attributes rtdr.scene,
+// rtdr.seed and rtdr.gradient.<parameter>. `prev` is frame i-1 as this function rendered it, or null for the
+// first frame; its attributes must match (same scene, seed and parameters). Needs settings.spp == 1: a gradient
+// compares two 1-spp samples.
 Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width, int height,
                                   const RenderSettings& settings, const GradientParams& params, const Frame* prev,
                                   TraceStats* stats = nullptr, const RowsDone& rows_done = {});

@@ -2,6 +2,8 @@
 // it and the shaders that port it. This test keeps the promise true: every file it names exists, every function
 // named is defined in its file, every quoted test case is in its test file, and the implementing file and every
 // shader named cite the equation they claim to implement.
+#include "markdown_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -22,24 +24,8 @@ std::string read(const fs::path& p) {
   return ss.str();
 }
 
-std::vector<std::string> split_row(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line.substr(1));  // drop the leading '|'
-  for (std::string cell; std::getline(ss, cell, '|');) {
-    const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
-    cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-  }
-  return cells;
-}
-
-// Every `code span` in a cell.
-std::vector<std::string> code_spans(const std::string& cell) {
-  std::vector<std::string> spans;
-  const std::regex span("`([^`]+)`");
-  for (auto it = std::sregex_iterator(cell.begin(), cell.end(), span); it != std::sregex_iterator(); ++it)
-    spans.push_back((*it)[1].str());
-  return spans;
-}
+using test::code_spans;
+using test::split_row;
 
 struct Row {
   std::string paper, equation, function, test, shader;

@@ -144,7 +144,7 @@ Command add_compare_command(CLI::App& app) {
                                                 "per-channel differences of every output and intermediate buffer");
   sub->add_option("--method", o->method, "the method (svgf: the one with Vulkan ports)")->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
-  sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");
+  sub->add_option("--frames", o->frames, frames_help("; default: every frame in --in"));
   sub->add_option("--csv", o->csv, "also write one row per frame and channel to this CSV file");
   sub->add_option("--rel-floor", o->rel_floor, "relative differences are to max(|cpu|, this)")->capture_default_str();
   sub->add_option("--max-rel-error", o->max_rel_error,

@@ -112,7 +112,7 @@ Command add_eval_command(CLI::App& app) {
                   "shader ports, illumination=fp16 with half records (eval/README.md)")
       ->capture_default_str();
   sub->add_flag("--sweep", o->sweep, "add the parameter sweeps: a-trous levels, alpha, the 3x3 kernel");
-  sub->add_option("--frames", o->frames, "inclusive frame range A-B")->capture_default_str();
+  sub->add_option("--frames", o->frames, frames_help(""))->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--ref-spp", o->ref_spp, "samples per pixel of the reference frames")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();

@@ -103,7 +103,7 @@ Command add_filter_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--out", o->out, "output directory (created if missing)")->required();
-  sub->add_option("--frames", o->frames, "inclusive frame range A-B (default: every frame in --in)");
+  sub->add_option("--frames", o->frames, frames_help("; default: every frame in --in"));
   sub->add_flag("--dump-passes", o->dump, "also write every intermediate buffer of every pass (docs/buffers.md)");
   add_method_flags(sub, o->params);
   return {sub, [o] { run_filter(*o); }};

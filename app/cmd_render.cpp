@@ -113,7 +113,7 @@ Command add_render_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("render", "render a scene's frames (G-buffer, motion, 1 spp or reference radiance) to multi-layer EXR files");
   sub->add_option("--scene", o->scene, "shipped scene name (see scenes/) or path to a .gltf file")
       ->capture_default_str();
-  sub->add_option("--frames", o->frames, "inclusive frame range A-B (or one frame A); frame f is at t = f/fps")
+  sub->add_option("--frames", o->frames, frames_help(", or one frame A; frame f is at t = f/fps"))
       ->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--out", o->out, "output directory (created if missing)")->capture_default_str();

@@ -26,6 +26,9 @@ Command add_probe_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 
+// The help of every --frames flag: "inclusive frame range A-B (0 <= A <= B <= 999999)" and then `more`.
+std::string frames_help(const std::string& more);
+
 // Shared option parsing, with one-line rtdr::Error messages naming the flag.
 struct Size {
   int width;

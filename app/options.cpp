@@ -44,6 +44,10 @@ FrameRange parse_frames(const std::string& text) {
   return r;
 }
 
+std::string frames_help(const std::string& more) {
+  return "inclusive frame range A-B (0 <= A <= B <= " + std::to_string(kMaxFrameIndex) + ")" + more;
+}
+
 Pixel parse_pixel(const std::string& text, const std::string& flag) {
   const size_t comma = text.find(',');
   Pixel p{};

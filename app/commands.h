@@ -51,6 +51,13 @@ Pixel parse_pixel(const std::string& text, const std::string& flag);
 // --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores (--atrous-levels,
 // --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the method is made.
 void add_method_flags(CLI::App* sub, MethodParams& params);
+// Those tables, listed once for every reader of the flags (add_method_flags, the CLI fuzzer): each as
+// T(member of MethodParams, flag prefix, its X-macro table, help group).
+#define RTDR_METHOD_PARAM_TABLES(T)                                            \
+  T(svgf, "", RTDR_SVGF_PARAMS, "SVGF parameters")                              \
+  T(eaw, "eaw-", RTDR_EAW_PARAMS, "EAW parameters (methods eaw, eaw-accum)")     \
+  T(tonemap, "tonemap-", RTDR_TONEMAP_PARAMS, "Tone mapping parameters")        \
+  T(taa, "taa-", RTDR_TAA_PARAMS, "TAA parameters")
 // A-SVGF's gradient sample parameters (trace/gradients.h) as --gradient-<name>, for rtdr render --gradients.
 void add_gradient_flags(CLI::App* sub, GradientParams& params);
 // The flag of row `name` of a table whose flags start with `prefix` ("", "eaw-", "tonemap-", "taa-", "gradient-").

@@ -69,26 +69,14 @@ std::string param_flag(std::string_view prefix, std::string_view name) {
   sub->add_option(param_flag(prefix, #name), table.name, std::string(source))->capture_default_str()->group(group);
 
 void add_method_flags(CLI::App* sub, MethodParams& p) {
-  {
-    SvgfParams& table = p.svgf;
-    const char *prefix = "", *group = "SVGF parameters";
-    RTDR_SVGF_PARAMS(RTDR_PARAM_FLAG)
+#define RTDR_TABLE_FLAGS(member, table_prefix, TABLE, table_group) \
+  {                                                                \
+    auto& table = p.member;                                        \
+    const char *prefix = table_prefix, *group = table_group;       \
+    TABLE(RTDR_PARAM_FLAG)                                         \
   }
-  {
-    EawParams& table = p.eaw;
-    const char *prefix = "eaw-", *group = "EAW parameters (methods eaw, eaw-accum)";
-    RTDR_EAW_PARAMS(RTDR_PARAM_FLAG)
-  }
-  {
-    TonemapParams& table = p.tonemap;
-    const char *prefix = "tonemap-", *group = "Tone mapping parameters";
-    RTDR_TONEMAP_PARAMS(RTDR_PARAM_FLAG)
-  }
-  {
-    TaaParams& table = p.taa;
-    const char *prefix = "taa-", *group = "TAA parameters";
-    RTDR_TAA_PARAMS(RTDR_PARAM_FLAG)
-  }
+  RTDR_METHOD_PARAM_TABLES(RTDR_TABLE_FLAGS)
+#undef RTDR_TABLE_FLAGS
 }
 
 void add_gradient_flags(CLI::App* sub, GradientParams& table) {

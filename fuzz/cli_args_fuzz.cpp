@@ -69,26 +69,14 @@ rtdr::MethodParams method_params(const CLI::App* sub) {
 #define RTDR_FUZZ_READ_FLAG(type, name, def, lo, hi, symbol, source)                                    \
   if (const CLI::Option* o = sub->get_option_no_throw(rtdr::param_flag(prefix, #name)); o && o->count() > 0) \
     table.name = o->as<type>();
-  {
-    auto& table = p.svgf;
-    const char* prefix = "";
-    RTDR_SVGF_PARAMS(RTDR_FUZZ_READ_FLAG)
+#define RTDR_FUZZ_READ_TABLE(member, table_prefix, TABLE, group) \
+  {                                                              \
+    auto& table = p.member;                                      \
+    const char* prefix = table_prefix;                           \
+    TABLE(RTDR_FUZZ_READ_FLAG)                                   \
   }
-  {
-    auto& table = p.eaw;
-    const char* prefix = "eaw-";
-    RTDR_EAW_PARAMS(RTDR_FUZZ_READ_FLAG)
-  }
-  {
-    auto& table = p.tonemap;
-    const char* prefix = "tonemap-";
-    RTDR_TONEMAP_PARAMS(RTDR_FUZZ_READ_FLAG)
-  }
-  {
-    auto& table = p.taa;
-    const char* prefix = "taa-";
-    RTDR_TAA_PARAMS(RTDR_FUZZ_READ_FLAG)
-  }
+  RTDR_METHOD_PARAM_TABLES(RTDR_FUZZ_READ_TABLE)
+#undef RTDR_FUZZ_READ_TABLE
 #undef RTDR_FUZZ_READ_FLAG
   return p;
 }

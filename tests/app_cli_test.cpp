@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -31,15 +32,19 @@ size_t count_files(const fs::path& dir) { return files_in(dir).size(); }
 // The channel names in the first column of the tables of docs/buffers.md that describe rendered frames
 // (everything before "## Filter passes"): each `name` in the cell, where
 // the last part may list alternatives, `path.light.X/Y/Z` meaning path.light.X, path.light.Y, path.light.Z.
-std::set<std::string> documented_channels() {
+// The channels that the tables of docs/buffers.md's sections whose headings start with one of `sections` name.
+std::set<std::string> documented_channels(const std::vector<std::string>& sections) {
   std::set<std::string> names;
   std::istringstream doc(read_file(fs::path(RTDR_SOURCE_DIR) / "docs/buffers.md"));
   const std::regex row("^\\| (`[^|]+) \\|");
-  const std::regex name("`([a-z.]+)\\.([A-Za-z/]+)`");
+  const std::regex name("`([a-z.]+)\\.([A-Za-z_/]+)`");
+  bool inside = false;
   for (std::string line; std::getline(doc, line);) {
-    if (line == "## Filter passes") break;  // what follows is written by rtdr filter
+    if (line.starts_with("## "))
+      inside = std::any_of(sections.begin(), sections.end(),
+                           [&](const std::string& s) { return line.starts_with("## " + s); });
     std::smatch cell;
-    if (!std::regex_search(line, cell, row)) continue;
+    if (!inside || !std::regex_search(line, cell, row)) continue;
     const std::string text = cell[1].str();
     for (auto it = std::sregex_iterator(text.begin(), text.end(), name); it != std::sregex_iterator(); ++it) {
       std::stringstream suffixes((*it)[2].str());
@@ -47,6 +52,11 @@ std::set<std::string> documented_channels() {
     }
   }
   return names;
+}
+
+// What rtdr render writes.
+std::set<std::string> documented_channels() {
+  return documented_channels({"G-buffer and visibility buffer", "Path-traced radiance"});
 }
 
 }  // namespace
@@ -127,8 +137,9 @@ TEST_CASE("render --gradients adds the documented gradient layers, continues a s
   std::set<std::string> written;
   for (const auto& [name, plane] : frame.float_channels()) written.insert(name);
   for (const auto& [name, plane] : frame.uint_channels()) written.insert(name);
-  std::set<std::string> expected = documented_channels();
-  expected.insert({"gradient.source", "gradient.prev_direct", "gradient.prev_indirect"});
+  const std::set<std::string> expected =
+      documented_channels({"G-buffer and visibility buffer", "Path-traced radiance", "Gradient samples"});
+  CHECK(expected.size() == documented_channels().size() + 4);  // gradient.source, .prev_direct/indirect, rng.seed_frame
   CHECK(written == expected);
   size_t gradient_pixels = 0;
   for (const uint32_t s : frame.uint_channel("gradient.source").data) gradient_pixels += s != rtdr::kInvalidId;

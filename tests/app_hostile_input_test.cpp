@@ -26,21 +26,18 @@ TEST_CASE("eval: a quote, a semicolon and $(...) in --out and --scene are only n
 
 TEST_CASE("eval: a chart step that fails (disk full) is one line and leaves no output, no 0-byte PNG") {
   const fs::path dir = scratch("eval_disk_full");
-  // A stand-in matplotlib whose savefig starts the file and then fails as a full disk does.
-  fs::create_directories(dir / "fake" / "matplotlib");
-  std::ofstream(dir / "fake" / "matplotlib" / "__init__.py") << "def use(backend):\n    pass\n";
-  std::ofstream(dir / "fake" / "matplotlib" / "pyplot.py")
+  // The real matplotlib, whose savefig starts the file and then fails as a full disk does: a sitecustomize on
+  // PYTHONPATH patches Figure.savefig before charts.py runs.
+  fs::create_directories(dir / "fake");
+  std::ofstream(dir / "fake" / "sitecustomize.py")
       << "import errno\n"
-         "class _Anything:\n"
-         "    def __getattr__(self, name):\n"
-         "        return lambda *a, **k: _Anything()\n"
-         "    def savefig(self, path, **k):\n"
-         "        open(path, 'wb').close()\n"
-         "        raise OSError(errno.ENOSPC, 'No space left on device')\n"
-         "def subplots(*a, **k):\n"
-         "    return _Anything(), _Anything()\n"
-         "def close(fig):\n"
-         "    pass\n";
+         "import matplotlib\n"
+         "matplotlib.use('Agg')\n"
+         "import matplotlib.figure\n"
+         "def _full_disk(self, fname, *a, **k):\n"
+         "    open(fname, 'wb').close()\n"
+         "    raise OSError(errno.ENOSPC, 'No space left on device')\n"
+         "matplotlib.figure.Figure.savefig = _full_disk\n";
   const fs::path out = dir / "out";
   const RunResult r = run_rtdr_args({"eval", "--scene", "cornell", "--methods", "none", "--frames", "0-1", "--size",
                                      "16x12", "--ref-spp", "1", "--cache", "", "--out", out.string()},

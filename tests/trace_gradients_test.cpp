@@ -100,6 +100,45 @@ TEST_CASE("static scene and camera: every gradient sample re-shades to its sourc
   CHECK(changed >= lit * 3 / 4);
 }
 
+TEST_CASE("Sec. 5.4: a switched light changes every pixel's light choice, unless the seed's frame chooses") {
+  // flicker with its camera and red light frozen: only the blue panel changes, on at frame 14 and off at 15.
+  Scene scene = load_scene("flicker");
+  for (Node& node : scene.nodes) node.translation_track = {}, node.rotation_track = {}, node.scale_track = {};
+  uint32_t blue = kInvalidId;
+  for (size_t i = 0; i < scene.instances.size(); ++i)
+    if (!scene.material_of_mesh(scene.instances[i].mesh).emissive_strength_track.times.empty()) blue = uint32_t(i);
+  REQUIRE(blue != kInvalidId);
+
+  // A gradient sample that met the blue light (its light sample, or its BSDF ray hit it) changes for sure. Every
+  // other one sees the same light with the same radiance and MIS weights when its light is chosen as before.
+  const auto count = [&](const GradientParams& params, int& unaffected, int& changed) {
+    const std::vector<Frame> frames = render_sequence(scene, 13, 15, 64, 36, params);
+    const Frame& f = frames[2];
+    unaffected = changed = 0;
+    for (const size_t i : gradient_pixels(f)) {
+      if (f.uint_channel("path.light.instance").data[i] == blue ||
+          f.uint_channel("path.secondary.instance").data[i] == blue)
+        continue;
+      ++unaffected;
+      changed += luminance_at(f, "direct", i) != f.float_channel("gradient.prev_direct").data[i];
+      // The seed's frame travels with the seed: a chained seed keeps the frame it was made in.
+      const uint32_t j = f.uint_channel("gradient.source").data[i];
+      CHECK(f.uint_channel("rng.seed_frame").data[i] == frames[1].uint_channel("rng.seed_frame").data[j]);
+    }
+  };
+  GradientParams current, seed_frame;
+  seed_frame.light_cdf = 1;
+  int unaffected_current = 0, changed_current = 0, unaffected_seed = 0, changed_seed = 0;
+  count(current, unaffected_current, changed_current);
+  count(seed_frame, unaffected_seed, changed_seed);
+  INFO("light_cdf 0: " << changed_current << " of " << unaffected_current
+                       << " gradient pixels away from the blue light changed; light_cdf 1: " << changed_seed << " of "
+                       << unaffected_seed);
+  CHECK(unaffected_seed >= 100);
+  CHECK(changed_seed == 0);                            // the seed's frame chooses: exactly the old light
+  CHECK(changed_current * 10 >= unaffected_current);   // this frame's powers: many choices move
+}
+
 TEST_CASE("at most one gradient sample per stratum of the current frame, for stratum sizes 2, 3 and 4") {
   const Scene scene = load_scene("pillars");
   for (const int s : {2, 3, 4}) {

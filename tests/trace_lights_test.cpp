@@ -267,6 +267,50 @@ TEST_CASE("LightSet follows an animated emissive strength") {
   }
 }
 
+TEST_CASE("LightSet with a choice pose chooses by that pose's powers and shades with this pose's radiance") {
+  // The flickering lamp of the test above (4 -> 0 -> 4 over t = 0, 1, 2) and the steady lamp (1); the
+  // flickering one also moves 1 m along x from t = 0 to 1, so its geometry comes from the shaded pose.
+  rtdr::Scene scene = rtdr::test::camera_scene();
+  rtdr::Material flicker = emitter({1.0f, 1.0f, 1.0f}, 1.0f);
+  flicker.emissive_strength_track.times = {0.0f, 1.0f, 2.0f};
+  flicker.emissive_strength_track.values = {4.0f, 0.0f, 4.0f};
+  const int flicker_material = rtdr::test::add_material(scene, flicker);
+  const int steady_material = rtdr::test::add_material(scene, emitter({1.0f, 1.0f, 1.0f}, 1.0f));
+  rtdr::test::add_quad(scene, 1.0f, glm::vec3(0.0f, 2.0f, 0.0f), about_x(90.0f), flicker_material);
+  rtdr::test::add_quad(scene, 1.0f, glm::vec3(3.0f, 2.0f, 0.0f), about_x(90.0f), steady_material);
+  rtdr::Node& lamp = scene.nodes[size_t(scene.instances[0].node)];
+  lamp.translation_track.times = {0.0f, 1.0f};
+  lamp.translation_track.values = {glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(1.0f, 2.0f, 0.0f)};
+
+  SECTION("choosing by the pose itself is the ordinary set, bit for bit") {
+    const rtdr::ScenePose pose = scene.pose(0.5);
+    const rtdr::LightSet plain(scene, pose), chosen(scene, pose, pose);
+    REQUIRE(plain.lights().size() == chosen.lights().size());
+    for (uint32_t t = 0; t < 2; ++t)
+      for (uint32_t i = 0; i < 2; ++i) CHECK(plain.pdf_area(i, t) == chosen.pdf_area(i, t));
+    for (float u : {0.1f, 0.4f, 0.7f, 0.95f}) CHECK(plain.sample(u, {0.3f, 0.6f}).light == chosen.sample(u, {0.3f, 0.6f}).light);
+  }
+  SECTION("shaded at t = 1 (the lamp off) and chosen at t = 0 (Le 4 against 1): the lamp stays a light of Le 0") {
+    const rtdr::LightSet lights(scene, scene.pose(1.0), scene.pose(0.0));
+    REQUIRE(lights.lights().size() == 4);
+    check_vertex(lights.lights()[0].radiance, {0.0f, 0.0f, 0.0f});
+    check_vertex(lights.lights()[2].radiance, {1.0f, 1.0f, 1.0f});
+    // Powers at t = 0: 4 against 1 over equal areas, so the lamp's two triangles carry 4/5, 2/5 each.
+    CHECK(lights.pdf_area(0, 0) == Approx((2.0 / 5.0) / 0.5).epsilon(1e-5));
+    CHECK(lights.pdf_area(1, 1) == Approx((1.0 / 10.0) / 0.5).epsilon(1e-5));
+    // Its triangles are where the lamp is at t = 1, 1 m along x from t = 0.
+    const rtdr::LightSet at_zero(scene, scene.pose(0.0));
+    CHECK(lights.lights()[0].p0.x == Approx(at_zero.lights()[0].p0.x + 1.0f).margin(1e-6));
+  }
+  SECTION("shaded at t = 0 and chosen at t = 1, when the lamp was off: it is never chosen, nor weighted") {
+    const rtdr::LightSet lights(scene, scene.pose(0.0), scene.pose(1.0));
+    REQUIRE(lights.lights().size() == 4);
+    CHECK(lights.pdf_area(0, 0) == 0.0f);  // so a BSDF ray that hits it has MIS weight 1
+    CHECK(lights.pdf_area(1, 0) == Approx(0.5 / 0.5).epsilon(1e-5));
+    for (float u = 0.0f; u < 1.0f; u += 0.0625f) CHECK(lights.lights()[size_t(lights.sample(u, {0.5f, 0.5f}).light)].instance == 1u);
+  }
+}
+
 TEST_CASE("A scene without emitters gives an empty LightSet") {
   rtdr::Scene scene = rtdr::test::camera_scene();
   rtdr::Material grey;

@@ -69,6 +69,7 @@ PreviousFrame PreviousFrame::from_frame(const Frame& frame) {
   for (size_t i = 0; i < p.vis.bary.size(); ++i) p.vis.bary[i] = {u.data[i], v.data[i]};
   p.vis.depth = frame.float_channel("depth.Z").data;
   p.seed = frame.uint_channel("rng.seed").data;
+  if (frame.uint_channels().count("rng.seed_frame")) p.seed_frame = frame.uint_channel("rng.seed_frame").data;
   p.luminance_direct = luminance_of(frame, "direct");
   p.luminance_indirect = luminance_of(frame, "indirect");
   p.was_gradient.assign(p.seed.size(), false);
@@ -158,9 +159,12 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
                 std::to_string(settings.spp));
   // Step 1: frame i as usual.
   FrameGeometry g = rasterize_frame(scene, frame_index, width, height);
-  std::vector<uint32_t> seeds(size_t(width) * size_t(height));
+  const size_t pixels = size_t(width) * size_t(height);
+  PixelSeeds seeds;
+  seeds.seed.resize(pixels);
+  std::vector<uint32_t> seed_frame(pixels, uint32_t(frame_index));  // the frame each pixel's seed was made in
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) seeds[g.vis.index(x, y)] = pixel_seed(settings.seed, frame_index, x, y);
+    for (int x = 0; x < width; ++x) seeds.seed[g.vis.index(x, y)] = pixel_seed(settings.seed, frame_index, x, y);
 
   // Steps 2-5, then 6: merge each sample and its seed into the visibility buffer at jbar [Fig. 2d, Eq. 6].
   PreviousFrame previous;
@@ -180,8 +184,13 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
     // delta is a random variable of both frames' random numbers [ASVGF18 Eq. 3]. With independent seeds its
     // variance is the sum of both samples' [ASVGF18 Eq. 4] [ASVGF18 Eq. 5]; with the previous seed they share
     // their random numbers and most of the noise cancels: xi_{i,jbar} := xi_{i-1,j} [ASVGF18 Eq. 6].
-    if (params.seed_reuse != 0) seeds[i] = previous.seed[s.source];
+    if (params.seed_reuse != 0) {
+      seeds.seed[i] = previous.seed[s.source];
+      seed_frame[i] = previous.seed_frame.empty() ? uint32_t(frame_index - 1) : previous.seed_frame[s.source];
+    }
   }
+  // The same random numbers choose the same light only under the same light powers [ASVGF18 Sec. 5.4].
+  if (params.light_cdf == 1) seeds.light_choice_frame.assign(seed_frame.begin(), seed_frame.end());
 
   // Step 7: the G-buffer, motion and shading of the merged buffer; jbar's shading is f_i(G~, xi_{i-1,j}).
   Frame frame(width, height);
@@ -190,6 +199,7 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
   write_motion_layers(scene, g, frame);
   const TraceStats traced = trace_layers(scene, g, settings, frame, rows_done, &seeds);
   if (stats) *stats = traced;
+  frame.add_uint("rng.seed_frame").data = seed_frame;
 
   // Step 8: the source pixel, and f_{i-1}(G, xi_{i-1,j}) as luminance, beside each gradient sample [ASVGF18 Eq. 2].
   UIntPlane& source = frame.add_uint("gradient.source", kInvalidId);

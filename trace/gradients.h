@@ -33,6 +33,12 @@
 // - The barycentrics of a merged pixel are those of j's centre in frame i-1: the point is G~, up to a pixel away
 //   from jbar's centre (as in the paper, Fig. 2d).
 // - Frame 0 has no previous frame, hence no gradient samples.
+// - Light choice [Sec. 5.4]: our lights are chosen in proportion to their power, so when one light changes, the
+//   same random number may pick another light at every pixel, and delta is noise far from the change. With
+//   light_cdf 1 a re-shaded sample chooses its lights by the powers of the frame its seed was made in (recorded
+//   per pixel in rng.seed_frame, since chained seeds may be older than one frame) and shades with this frame's
+//   emission: the paper's suggestion of storing the light choice with the seed, made exact. Default 0, as the
+//   paper renders.
 #pragma once
 
 #include "core/frame.h"
@@ -50,7 +56,9 @@
   X(int, stratum_size, 3, 2, 8, "s", "ASVGF18 Sec. 3.3: one gradient sample per 3x3 stratum; 2 and 4 in Fig. 5") \
   X(int, selection, 0, 0, 1, "", "0: a random pixel of each stratum (ASVGF18 Sec. 3.3); 1: the brightest (Q2RTX)") \
   X(int, seed_reuse, 1, 0, 1, "", "1: re-shade with frame i-1's seed (ASVGF18 Eq. 6); 0: a new seed (Eq. 4-5)")    \
-  X(int, seed_chains, 1, 0, 1, "", "1: a forwarded seed may be forwarded again (ASVGF18 Sec. 3.2); 0: never (Q2RTX)")
+  X(int, seed_chains, 1, 0, 1, "", "1: a forwarded seed may be forwarded again (ASVGF18 Sec. 3.2); 0: never (Q2RTX)") \
+  X(int, light_cdf, 0, 0, 1, "",                                                                                  \
+    "lights of a re-shaded sample are chosen by the powers of 0: this frame (ASVGF18); 1: its seed's frame (Sec. 5.4)")
 
 namespace rtdr {
 
@@ -65,10 +73,12 @@ void validate(const GradientParams& params);
 
 // What frame i needs of frame i-1, read from its layers (docs/buffers.md): its visibility buffer (id.instance,
 // id.triangle, bary.U/V, depth.Z), its seeds (rng.seed), the luminance of its demodulated direct and indirect
-// illumination, and which of its pixels were gradient samples themselves (gradient.source; none when absent).
+// illumination, which of its pixels were gradient samples themselves (gradient.source; none when absent), and the
+// frame each seed was made in (rng.seed_frame; when absent, all in frame i-1).
 struct PreviousFrame {
   VisibilityBuffer vis;
   std::vector<uint32_t> seed;
+  std::vector<uint32_t> seed_frame;  // empty: every seed was made in frame i-1
   std::vector<float> luminance_direct, luminance_indirect;
   std::vector<bool> was_gradient;
 
@@ -96,7 +106,8 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
 
 // Steps 1-8: frame `frame_index` rendered with its gradient samples merged, with the layers of render_frame plus
 // gradient.source (uint: j where the pixel is a gradient sample, else kInvalidId), gradient.prev_direct and
-// gradient.prev_indirect (frame i-1's luminance at j; 0 elsewhere), and the header attributes rtdr.scene,
+// gradient.prev_indirect (frame i-1's luminance at j; 0 elsewhere), rng.seed_frame (uint: the frame the pixel's
+// seed was made in), and the header attributes rtdr.scene,
 // rtdr.seed and rtdr.gradient.<parameter>. `prev` is frame i-1 as this function rendered it, or null for the
 // first frame; its attributes must match (same scene, seed and parameters). Needs settings.spp == 1: a gradient
 // compares two 1-spp samples.

@@ -5,41 +5,62 @@
 #include "core/color.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
 namespace rtdr {
 
-LightSet::LightSet(const Scene& scene, const ScenePose& pose) {
+namespace {
+
+// Triangle t of an instance, in world space by `to_world`.
+std::array<glm::vec3, 3> world_triangle(const Mesh& mesh, size_t t, const glm::mat4& to_world) {
+  std::array<glm::vec3, 3> p;
+  for (int k = 0; k < 3; ++k) p[size_t(k)] = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][k]], 1.0f));
+  return p;
+}
+
+float triangle_area(const std::array<glm::vec3, 3>& p) { return 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])); }
+
+}  // namespace
+
+LightSet::LightSet(const Scene& scene, const ScenePose& pose) : LightSet(scene, pose, pose) {}
+
+// Chosen by the powers at `choice`, shaded at `pose`: re-shaded gradient samples choose as their seed's frame did
+// [ASVGF18 Sec. 5.4].
+LightSet::LightSet(const Scene& scene, const ScenePose& pose, const ScenePose& choice) {
   first_light_of_instance_.assign(scene.instances.size(), -1);
   instance_triangle_count_.assign(scene.instances.size(), 0);
+  std::vector<double> power;  // Phi of each light at the choice pose
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Mesh& mesh = scene.meshes[size_t(scene.instances[i].mesh)];
     const Material& material = scene.material_of_mesh(scene.instances[i].mesh);
     const glm::vec3 radiance = material.emissive * scene.emissive_strength(material, pose.t);
-    if (luminance(radiance) <= 0.0f) continue;  // not a light (or switched off at this time)
+    const glm::vec3 radiance_at_choice = material.emissive * scene.emissive_strength(material, choice.t);
+    // Not a light, or switched off at both times.
+    if (luminance(radiance) <= 0.0f && luminance(radiance_at_choice) <= 0.0f) continue;
     first_light_of_instance_[i] = int(lights_.size());
     instance_triangle_count_[i] = int(mesh.triangles.size());
-    const glm::mat4& to_world = pose.instance_to_world[i];
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const std::array<glm::vec3, 3> p = world_triangle(mesh, t, pose.instance_to_world[i]);
       EmissiveTriangle e;
-      e.p0 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][0]], 1.0f));
-      e.p1 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][1]], 1.0f));
-      e.p2 = glm::vec3(to_world * glm::vec4(mesh.positions[mesh.triangles[t][2]], 1.0f));
-      const glm::vec3 cross = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
-      e.area = 0.5f * glm::length(cross);
-      e.normal = e.area > 0.0f ? cross / (2.0f * e.area) : glm::vec3(0.0f, 1.0f, 0.0f);
+      e.p0 = p[0];
+      e.p1 = p[1];
+      e.p2 = p[2];
+      e.area = triangle_area(p);
+      e.normal = e.area > 0.0f ? glm::cross(e.p1 - e.p0, e.p2 - e.p0) / (2.0f * e.area) : glm::vec3(0.0f, 1.0f, 0.0f);
       e.radiance = radiance;
       e.instance = uint32_t(i);
       e.triangle = uint32_t(t);
       lights_.push_back(e);
+      // Power of a one-sided Lambertian emitter: Phi = pi * A * L (luminance, so the choice follows brightness).
+      // (With choice = pose, area_at_choice is e.area, bit for bit.)
+      const float area_at_choice = triangle_area(world_triangle(mesh, t, choice.instance_to_world[i]));
+      power.push_back(std::numbers::pi * double(area_at_choice) * double(luminance(radiance_at_choice)));
     }
   }
-  // Power of a one-sided Lambertian emitter: Phi = pi * A * L (luminance, so the choice follows brightness).
-  std::vector<double> power(lights_.size());
   double total = 0.0;
-  for (size_t l = 0; l < lights_.size(); ++l)
-    total += power[l] = std::numbers::pi * double(lights_[l].area) * double(luminance(lights_[l].radiance));
+  for (double p : power) total += p;
   cdf_.resize(lights_.size());
   pmf_.resize(lights_.size());
   double running = 0.0;
@@ -49,7 +70,8 @@ LightSet::LightSet(const Scene& scene, const ScenePose& pose) {
     cdf_[l] = total > 0.0 ? float(running / total) : 0.0f;
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;  // guard the last bin against rounding
-  if (total <= 0.0) *this = LightSet();   // emissive materials whose triangles all have zero area
+  // No power to choose by: emissive triangles that all have zero area, or every light off at the choice time.
+  if (total <= 0.0) *this = LightSet();
 }
 
 LightSample LightSet::sample(float u_select, glm::vec2 u_point) const {

@@ -4,6 +4,13 @@
 // Emitters are one-sided Lambertian: a triangle emits radiance Le = emissive * strength(t) from its front
 // face (counter-clockwise winding, glTF's front) into the hemisphere around its geometric normal. Its
 // power is Phi = pi * A * luminance(Le).
+//
+// The choice may follow another frame's powers than the one shaded (the `choice` pose): A-SVGF re-shades a
+// gradient sample with the random numbers of the frame its seed was made in, and the same numbers pick the same
+// light only under that frame's powers [ASVGF18 Sec. 5.4]. The set then holds every emitter lit at either time;
+// it is chosen with the choice pose's powers and shaded with this frame's geometry and radiance. That estimator
+// stays unbiased wherever every light lit now has a non-zero choice probability; a light that was off at the
+// choice time is found only by BSDF rays (whose MIS weight is then 1).
 #pragma once
 
 #include "scenes/scene.h"
@@ -35,11 +42,13 @@ class LightSet {
  public:
   LightSet() = default;  // no lights
   LightSet(const Scene& scene, const ScenePose& pose);
+  // Lights at `pose`, chosen in proportion to their power at `choice` (see above).
+  LightSet(const Scene& scene, const ScenePose& pose, const ScenePose& choice);
 
   bool empty() const { return lights_.empty(); }
   const std::vector<EmissiveTriangle>& lights() const { return lights_; }
 
-  // Picks a light by power with u_select, then a uniform point on it with u_point (uniform on the
+  // Picks a light by (the choice pose's) power with u_select, then a uniform point on it with u_point (uniform on the
   // triangle by the square-root warp, Shirley and Chiu 1997 / pbrt-v4 Sec. A.5.5).
   LightSample sample(float u_select, glm::vec2 u_point) const;
   // The area density with which sample() would have produced a point on triangle `triangle` of

@@ -8,6 +8,7 @@
 #include "trace/sampler.h"
 
 #include <chrono>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -85,27 +86,38 @@ uint32_t trace_pixel(const TraceContext& c, const SurfaceSample& s, const glm::v
 }  // namespace
 
 TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const RenderSettings& settings, Frame& frame,
-                        const RowsDone& rows_done, const std::vector<uint32_t>* seeds) {
-  const EmbreeScene embree(scene, g.pose);
-  const LightSet lights(scene, g.pose);
-  const SurfaceTable surfaces(scene, g.pose);
-  const TraceContext context{scene, g.pose, embree, lights, surfaces, settings.trace};
-
+                        const RowsDone& rows_done, const PixelSeeds* seeds) {
   const int width = g.vis.width, height = g.vis.height;
-  if (seeds && seeds->size() != size_t(width) * size_t(height))
-    throw Error("trace_layers: " + std::to_string(seeds->size()) + " seeds for a " + std::to_string(width) + "x" +
-                std::to_string(height) + " frame");
+  const size_t pixels = size_t(width) * size_t(height);
+  if (seeds && (seeds->seed.size() != pixels ||
+                (!seeds->light_choice_frame.empty() && seeds->light_choice_frame.size() != pixels)))
+    throw Error("trace_layers: " + std::to_string(seeds->seed.size()) + " seeds and " +
+                std::to_string(seeds->light_choice_frame.size()) + " light-choice frames for a " +
+                std::to_string(width) + "x" + std::to_string(height) + " frame");
+  const EmbreeScene embree(scene, g.pose);
+  const SurfaceTable surfaces(scene, g.pose);
+  // One light set per frame whose powers choose lights: this frame's, and those the pixel seeds ask for.
+  std::map<int, LightSet> lights;
+  lights.emplace(g.index, LightSet(scene, g.pose));
+  if (seeds)
+    for (int f : seeds->light_choice_frame)
+      if (!lights.count(f)) lights.emplace(f, LightSet(scene, g.pose, scene.pose(scene.time_of_frame(f))));
+  std::map<int, TraceContext> contexts;
+  for (const auto& [f, set] : lights) contexts.emplace(f, TraceContext{scene, g.pose, embree, set, surfaces, settings.trace});
+
   RadianceLayers layers(frame);
   // Rays per second measure the tracing loop alone (not the BVH build or Embree's one-time start-up).
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint64_t> rays_per_row(size_t(height), 0);  // summed after the loop: no shared counter
   parallel_rows(height, [&](int y) {
     for (int x = 0; x < width; ++x) {
-      const uint32_t seed = seeds ? (*seeds)[g.vis.index(x, y)] : pixel_seed(settings.seed, g.index, x, y);
-      layers.seed.data[g.vis.index(x, y)] = seed;
+      const size_t i = g.vis.index(x, y);
+      const uint32_t seed = seeds ? seeds->seed[i] : pixel_seed(settings.seed, g.index, x, y);
+      layers.seed.data[i] = seed;
       const SurfaceSample s = g.vis.sample(x, y);
       if (!s.valid()) continue;  // background: every radiance layer stays 0
-      rays_per_row[size_t(y)] += trace_pixel(context, s, g.view.eye, seed, settings.spp, g.vis.index(x, y), layers);
+      const int choice = seeds && !seeds->light_choice_frame.empty() ? seeds->light_choice_frame[i] : g.index;
+      rays_per_row[size_t(y)] += trace_pixel(contexts.at(choice), s, g.view.eye, seed, settings.spp, i, layers);
     }
     if (rows_done) rows_done(1);
   });

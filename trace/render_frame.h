@@ -36,11 +36,18 @@ struct TraceStats {
 // Called with the number of rows finished since the last call (from worker threads), for progress bars.
 using RowsDone = std::function<void(int rows)>;
 
-// Adds the radiance layers of `geometry`'s frame to `frame` (same size) and returns what it traced. `seeds`, when
-// given, holds every pixel's seed (row-major), in place of pixel_seed: A-SVGF's gradient samples are traced with
-// the previous frame's seeds (trace/gradients.h).
+// Seeds given per pixel, in place of pixel_seed: A-SVGF's gradient samples are traced with the previous frame's
+// seeds (trace/gradients.h).
+struct PixelSeeds {
+  std::vector<uint32_t> seed;  // every pixel's seed, row-major
+  // Per pixel, the frame whose light powers choose its lights (LightSet's choice pose) [ASVGF18 Sec. 5.4];
+  // empty: every pixel chooses with this frame's.
+  std::vector<int> light_choice_frame;
+};
+
+// Adds the radiance layers of `geometry`'s frame to `frame` (same size) and returns what it traced.
 TraceStats trace_layers(const Scene& scene, const FrameGeometry& geometry, const RenderSettings& settings,
-                        Frame& frame, const RowsDone& rows_done = {}, const std::vector<uint32_t>* seeds = nullptr);
+                        Frame& frame, const RowsDone& rows_done = {}, const PixelSeeds* seeds = nullptr);
 
 // A whole frame: G-buffer, motion and radiance layers.
 Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,

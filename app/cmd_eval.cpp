@@ -28,6 +28,8 @@ struct EvalOptions {
   uint32_t seed = 0;
   std::string cache = "out/cache";
   std::string out = "out/eval";
+  bool gradients = false;
+  GradientParams gradient;
 };
 
 std::vector<MethodSpec> method_specs(const EvalOptions& o) {
@@ -69,6 +71,9 @@ void run_eval_command(const EvalOptions& o) {
   config.ref_spp = o.ref_spp;
   config.seed = o.seed;
   config.cache_dir = o.cache;
+  config.gradients = o.gradients;
+  config.gradient = o.gradient;
+  validate(o.gradient);
   SpecMethods methods;  // outlives every method run_eval makes
   config.make_method = [&methods](const MethodSpec& spec) { return methods.make(spec); };
   StagedOutputDir out(o.out);  // every output appears at the end, or none does
@@ -119,6 +124,9 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--seed", o->seed, "seed of the 1-spp inputs (references use another)")->capture_default_str();
   sub->add_option("--cache", o->cache, "where rendered frames are cached (\"\" for none)")->capture_default_str();
   sub->add_option("--out", o->out, "output directory")->capture_default_str();
+  sub->add_flag("--gradients", o->gradients,
+                "every method's input has A-SVGF's gradient samples (rtdr render --gradients), rendered from frame 0");
+  add_gradient_flags(sub, o->gradient);
   return {sub, [o] { run_eval_command(*o); }};
 }
 

@@ -135,6 +135,7 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   if (c.width < window || c.height < window)
     throw Error("size " + std::to_string(c.width) + "x" + std::to_string(c.height) + ": evaluation needs at least " +
                 std::to_string(window) + "x" + std::to_string(window) + " (the SSIM window)");
+  if (c.gradients) validate(c.gradient);
   const Scene scene = load_scene(c.scene);
   FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
@@ -150,8 +151,9 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<Frame> inputs;
   std::vector<RgbPlane> ref_colour, ref_display;
   const TonemapParams tonemap_params;
+  if (c.gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
-    inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
+    if (!c.gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
     tick();
     ref_colour.push_back(frame_colour(cache.get(f, c.width, c.height, reference_settings(c))));
     ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));

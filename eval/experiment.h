@@ -20,6 +20,7 @@
 #include "filters/image.h"
 #include "filters/method.h"
 #include "filters/svgf/svgf_params.h"
+#include "trace/gradients.h"
 #include "trace/render_frame.h"
 
 #include <functional>
@@ -53,6 +54,10 @@ struct EvalConfig {
   int ref_spp = 256;
   uint32_t seed = 0;
   std::string cache_dir = "out/cache";  // "" disables the cache
+  // A-SVGF's input for every method: 1-spp frames with gradient samples (trace/gradients.h), rendered in order
+  // from frame 0, as the paper compares methods on "identical 1 spp input".
+  bool gradients = false;
+  GradientParams gradient;
   // Makes a spec's method. Unset: the golden passes' make_method(spec.name, spec.svgf), and an error for any other
   // back end; rtdr eval sets app/backend.h's SpecMethods, which also makes the Vulkan ports.
   std::function<std::unique_ptr<Method>(const MethodSpec&)> make_method;
@@ -82,8 +87,8 @@ struct EvalResult {
 // remodulated, emission + albedo (direct + indirect).
 RgbPlane frame_colour(const Frame& frame);
 
-// What run_eval renders (or takes from the cache): 1-spp inputs of the config's seed, and references of ref_spp
-// samples of the same estimator with another seed.
+// What run_eval renders (or takes from the cache): 1-spp inputs of the config's seed (with gradient samples when
+// config.gradients), and references of ref_spp samples of the same estimator with another seed.
 RenderSettings input_settings(const EvalConfig& config);
 RenderSettings reference_settings(const EvalConfig& config);
 

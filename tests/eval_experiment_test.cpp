@@ -1,9 +1,11 @@
 // Tests of eval/experiment.cpp's plumbing: method specs with their back end, the method factory, and which pass
-// times make up ms_total. What the metrics measure is tested in eval_metrics_test.cpp, and what they say about the
+// times make up ms_total, and the cache of gradient inputs. What the metrics measure is tested in eval_metrics_test.cpp, and what they say about the
 // methods in eval_stability_test.cpp; the Vulkan ports under rtdr eval in app_eval_test.cpp.
 #include "eval/experiment.h"
 
 #include "core/error.h"
+#include "eval/frame_cache.h"
+#include "scenes/gltf_loader.h"
 
 #include "cli_fixtures.h"
 
@@ -115,4 +117,55 @@ TEST_CASE("ms_total is the sum of the pass times without the host's transfer, wh
     CHECK(row.ms.count("transfer") == (row.method == "none" ? 1u : 0u));
     if (row.method == "none") CHECK(row.ms.at("transfer") == WithTransfer::kTransferMs);
   }
+}
+
+TEST_CASE("gradient inputs are cached under every gradient parameter and continue from the latest cached frame") {
+  const rtdr::Scene scene = rtdr::load_scene("pillars");
+  const fs::path dir = rtdr::cli::scratch("rtdr_eval_experiment_test", "gradients");
+  rtdr::FrameCache cache(dir.string(), scene);
+  const rtdr::RenderSettings settings;
+  const rtdr::GradientParams params;
+  rtdr::GradientParams other;
+  other.light_cdf = 1;
+  const auto path = [&](int f) { return cache.path(f, 24, 16, settings, &params); };
+  CHECK(path(3) != cache.path(3, 24, 16, settings, &other));
+  CHECK(path(3) != cache.path(3, 24, 16, settings));
+  CHECK_THAT(path(3), Catch::Contains("-gradients-stratum_size3-selection0-seed_reuse1-seed_chains1-light_cdf0"));
+
+  // The sequence as render_frame_with_gradients makes it, each frame from the one before.
+  std::vector<rtdr::Frame> direct;
+  for (int f = 0; f <= 5; ++f)
+    direct.push_back(rtdr::render_frame_with_gradients(scene, f, 24, 16, settings, params, f ? &direct.back() : nullptr));
+  const auto same = [](const rtdr::Frame& a, const rtdr::Frame& b) {
+    return a.float_channel("direct.R").data == b.float_channel("direct.R").data &&
+           a.uint_channel("gradient.source").data == b.uint_channel("gradient.source").data &&
+           a.uint_channel("rng.seed").data == b.uint_channel("rng.seed").data;
+  };
+
+  // Frames 2-3 from an empty cache: frames 0 and 1 are rendered first, and every frame is stored.
+  const std::vector<rtdr::Frame> a = cache.gradient_frames(2, 3, 24, 16, settings, params);
+  REQUIRE(a.size() == 2);
+  CHECK(same(a[0], direct[2]));
+  CHECK(same(a[1], direct[3]));
+  for (int f = 0; f <= 3; ++f) CHECK(fs::exists(path(f)));
+
+  // Without frames 0-2 in the cache, frames 4-5 continue from frame 3 alone and are still the same sequence.
+  for (int f = 0; f <= 2; ++f) fs::remove(path(f));
+  const std::vector<rtdr::Frame> b = cache.gradient_frames(4, 5, 24, 16, settings, params);
+  REQUIRE(b.size() == 2);
+  CHECK(same(b[0], direct[4]));
+  CHECK(same(b[1], direct[5]));
+  CHECK_FALSE(fs::exists(path(0)));
+
+  // run_eval with gradients gives every method those frames: "none" passes its input through.
+  rtdr::EvalConfig c = tiny_config({"none"});
+  c.cache_dir = dir.string();
+  c.gradients = true;
+  c.first_frame = 4;
+  c.last_frame = 5;
+  const rtdr::EvalResult result = rtdr::run_eval(c);
+  CHECK(result.rows.size() == 2);
+  CHECK_FALSE(fs::exists(path(0)));  // frames 4-5 came from the cache
+  c.gradient.stratum_size = 9;
+  CHECK_THROWS_WITH(rtdr::run_eval(c), Catch::Contains("stratum_size"));
 }

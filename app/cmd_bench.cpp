@@ -67,7 +67,7 @@ Command add_bench_command(CLI::App& app) {
                   "GPU runs at its working clock rather than idling while the host packs the next frame")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  add_method_flags(sub, o->params);  // --stage filter
+  add_method_flags(sub, o->params, o->method);  // --stage filter
   add_gradient_flags(sub, o->gradient);  // --stage gradients
   return {sub, [o, sub] {
             // --backend alone means the filter stage, on pillars, 5 runs (a 1080p CPU frame takes seconds).

@@ -149,7 +149,7 @@ Command add_compare_command(CLI::App& app) {
   sub->add_option("--rel-floor", o->rel_floor, "relative differences are to max(|cpu|, this)")->capture_default_str();
   sub->add_option("--max-rel-error", o->max_rel_error,
                   "fail (exit 1, after the report) when a channel's relative difference exceeds this");
-  add_method_flags(sub, o->params);
+  add_method_flags(sub, o->params, o->method);
   return {sub, [o] { run_compare(*o); }};
 }
 

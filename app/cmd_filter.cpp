@@ -44,6 +44,7 @@ void run_filter(const FilterOptions& o) {
   std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
               o.method == "none" ? "" : describe(o.params.svgf).c_str());
+  if (o.method == "asvgf") std::printf("%s", describe_params(asvgf_param_table(), param_values(o.params.asvgf)).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_exr(f.path);
     const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
@@ -98,14 +99,14 @@ void run_probe(const ProbeOptions& o) {
 Command add_filter_command(CLI::App& app) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
-  sub->add_option("--method", o->method, "svgf, accum, eaw, eaw-accum or none")->capture_default_str();
+  sub->add_option("--method", o->method, "svgf, asvgf, accum, eaw, eaw-accum or none")->capture_default_str();
   sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports; svgf only)")
       ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--out", o->out, "output directory (created if missing)")->required();
   sub->add_option("--frames", o->frames, frames_help("; default: every frame in --in"));
   sub->add_flag("--dump-passes", o->dump, "also write every intermediate buffer of every pass (docs/buffers.md)");
-  add_method_flags(sub, o->params);
+  add_method_flags(sub, o->params, o->method);
   return {sub, [o] { run_filter(*o); }};
 }
 
@@ -128,7 +129,7 @@ Command add_probe_command(CLI::App& app) {
   sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes)")->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");
-  add_method_flags(sub, o->params);
+  add_method_flags(sub, o->params, o->method);
   return {sub, [o] { run_probe(*o); }};
 }
 

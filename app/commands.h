@@ -46,15 +46,17 @@ struct Pixel {
   int y;
 };
 Pixel parse_pixel(const std::string& text, const std::string& flag);
-// The SVGF tunables as flags of `sub`, one per row of the table in filters/svgf/svgf_params.h.
-// Every parameter table a method reads, as flags: SVGF's rows as --<name>, EAW's, tone mapping's and TAA's as
-// --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores (--atrous-levels,
-// --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the method is made.
-void add_method_flags(CLI::App* sub, MethodParams& params);
+// Every parameter table a method reads, as flags: SVGF's rows as --<name>, A-SVGF's, EAW's, tone mapping's and
+// TAA's as --asvgf-<name>, --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores
+// (--atrous-levels, --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the
+// method is made. A flag not given takes the default of the method named by `method` once the command line is
+// parsed (filters/method.h's method_defaults: asvgf's alpha is 0.1, not the 0.2 that --help shows for svgf).
+void add_method_flags(CLI::App* sub, MethodParams& params, const std::string& method);
 // Those tables, listed once for every reader of the flags (add_method_flags, the CLI fuzzer): each as
 // T(member of MethodParams, flag prefix, its X-macro table, help group).
 #define RTDR_METHOD_PARAM_TABLES(T)                                            \
-  T(svgf, "", RTDR_SVGF_PARAMS, "SVGF parameters")                              \
+  T(svgf, "", RTDR_SVGF_PARAMS, "SVGF parameters (svgf's defaults)")           \
+  T(asvgf, "asvgf-", RTDR_ASVGF_PARAMS, "A-SVGF parameters (method asvgf)")      \
   T(eaw, "eaw-", RTDR_EAW_PARAMS, "EAW parameters (methods eaw, eaw-accum)")     \
   T(tonemap, "tonemap-", RTDR_TONEMAP_PARAMS, "Tone mapping parameters")        \
   T(taa, "taa-", RTDR_TAA_PARAMS, "TAA parameters")

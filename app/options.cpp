@@ -68,7 +68,7 @@ std::string param_flag(std::string_view prefix, std::string_view name) {
 #define RTDR_PARAM_FLAG(type, name, def, lo, hi, symbol, source) \
   sub->add_option(param_flag(prefix, #name), table.name, std::string(source))->capture_default_str()->group(group);
 
-void add_method_flags(CLI::App* sub, MethodParams& p) {
+void add_method_flags(CLI::App* sub, MethodParams& p, const std::string& method) {
 #define RTDR_TABLE_FLAGS(member, table_prefix, TABLE, table_group) \
   {                                                                \
     auto& table = p.member;                                        \
@@ -77,6 +77,25 @@ void add_method_flags(CLI::App* sub, MethodParams& p) {
   }
   RTDR_METHOD_PARAM_TABLES(RTDR_TABLE_FLAGS)
 #undef RTDR_TABLE_FLAGS
+  // Once parsed: every row whose flag was not given takes the method's default. (An unknown method is left to
+  // make_method, which names the known ones; nothing may throw here, inside CLI11's parse.)
+  sub->parse_complete_callback([sub, &p, &method] {
+    const std::vector<std::string> names = method_names();
+    if (std::find(names.begin(), names.end(), method) == names.end()) return;
+    const MethodParams defaults = method_defaults(method);
+#define RTDR_DEFAULT_ROW(type, name, def, lo, hi, symbol, source) \
+  if (sub->count(param_flag(prefix, #name)) == 0) table.name = from.name;
+#define RTDR_TABLE_DEFAULTS(member, table_prefix, TABLE, table_group) \
+  {                                                                   \
+    auto& table = p.member;                                           \
+    const auto& from = defaults.member;                               \
+    const char* prefix = table_prefix;                                \
+    TABLE(RTDR_DEFAULT_ROW)                                           \
+  }
+    RTDR_METHOD_PARAM_TABLES(RTDR_TABLE_DEFAULTS)
+#undef RTDR_TABLE_DEFAULTS
+#undef RTDR_DEFAULT_ROW
+  });
 }
 
 void add_gradient_flags(CLI::App* sub, GradientParams& table) {

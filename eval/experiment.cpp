@@ -10,6 +10,7 @@
 #include "filters/svgf/tonemap.h"
 #include "scenes/gltf_loader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -75,7 +76,7 @@ MethodSpec parse_method_spec(const std::string& text) {
   MethodSpec spec;
   spec.text = text;
   spec.name = parts[0];
-  make_method(spec.name);  // throws for an unknown name, listing the known ones
+  spec.svgf = method_defaults(spec.name).svgf;  // throws for an unknown name, listing the known ones
   for (size_t i = 1; i < parts.size(); ++i) {
     const size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq), value_text = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
@@ -151,9 +152,15 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<Frame> inputs;
   std::vector<RgbPlane> ref_colour, ref_display;
   const TonemapParams tonemap_params;
-  if (c.gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
+  // With gradient samples when asked, or when a method reads them (asvgf): then every method gets the same input.
+  bool gradients = c.gradients;
+  for (const std::unique_ptr<Method>& m : methods) {
+    const std::vector<std::string> uints = m->inputs().uints;
+    gradients = gradients || std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
+  }
+  if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
-    if (!c.gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
+    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
     tick();
     ref_colour.push_back(frame_colour(cache.get(f, c.width, c.height, reference_settings(c))));
     ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));

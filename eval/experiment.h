@@ -55,7 +55,8 @@ struct EvalConfig {
   uint32_t seed = 0;
   std::string cache_dir = "out/cache";  // "" disables the cache
   // A-SVGF's input for every method: 1-spp frames with gradient samples (trace/gradients.h), rendered in order
-  // from frame 0, as the paper compares methods on "identical 1 spp input".
+  // from frame 0, as the paper compares methods on "identical 1 spp input". Implied when a method reads
+  // gradient.source (asvgf).
   bool gradients = false;
   GradientParams gradient;
   // Makes a spec's method. Unset: the golden passes' make_method(spec.name, spec.svgf), and an error for any other

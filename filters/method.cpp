@@ -10,25 +10,35 @@ namespace rtdr {
 namespace {
 
 // The options of a method: which stages run; every parameter keeps its declared default.
-SvgfOptions stages(const char* name, bool temporal, SpatialFilter spatial, bool taa = true) {
+SvgfOptions stages(const char* name, bool temporal, SpatialFilter spatial, bool taa = true, bool adaptive = false) {
   SvgfOptions o;
   o.name = name;
   o.temporal = temporal;
   o.spatial = spatial;
   o.taa = taa;
+  o.adaptive = adaptive;
   return o;
 }
 
 struct MethodEntry {
   const char* name;
   std::function<SvgfOptions()> options;
+  std::function<void(MethodParams&)> defaults = [](MethodParams&) {};  // where the method departs from the tables
 };
 
-// svgf runs every stage of [SVGF17 Sec. 3]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
+// A-SVGF's choices where they differ from SVGF's.
+void asvgf_defaults(MethodParams& p) {
+  p.svgf.alpha = 0.1f;          // [ASVGF18 Sec. 5]: "alpha = 0.1" (SVGF: 0.2)
+  p.svgf.alpha_moments = 0.1f;  // the paper has one alpha
+  p.svgf.kernel_size = 3;       // "a simple 3x3 box filter" for the a-trous [ASVGF18 Sec. 4]
+}
+
+// svgf runs every stage of [SVGF17 Sec. 3]; asvgf is SVGF with the adaptive alpha and the 3x3 box [ASVGF18 Sec. 4]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
 // is Dammertz 2010's edge-avoiding a-trous without temporal reuse, a baseline of [SVGF17 Sec. 5.1].
 const std::vector<MethodEntry>& registry() {
   static const std::vector<MethodEntry> methods = {
       {"svgf", [] { return stages("svgf", true, SpatialFilter::Atrous); }},
+      {"asvgf", [] { return stages("asvgf", true, SpatialFilter::Atrous, true, true); }, asvgf_defaults},
       {"accum", [] { return stages("accum", true, SpatialFilter::None); }},
       {"eaw", [] { return stages("eaw", false, SpatialFilter::Eaw); }},
       {"eaw-accum", [] { return stages("eaw-accum", true, SpatialFilter::Eaw); }},
@@ -57,6 +67,7 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     if (name != m.name) continue;
     SvgfOptions options = m.options();
     options.svgf = params.svgf;
+    options.asvgf = params.asvgf;
     options.eaw = params.eaw;
     options.tonemap = params.tonemap;
     options.taa_params = params.taa;
@@ -66,6 +77,16 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);
 }
+
+MethodParams method_defaults(const std::string& name) {
+  method_options(name, {});  // throws for an unknown name, listing the known ones
+  MethodParams params;
+  for (const MethodEntry& m : registry())
+    if (name == m.name) m.defaults(params);
+  return params;
+}
+
+std::unique_ptr<Method> make_method(const std::string& name) { return make_method(name, method_defaults(name)); }
 
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params) {
   return std::make_unique<SvgfFilter>(method_options(name, params));

@@ -11,6 +11,7 @@
 
 #include "core/frame.h"
 #include "filters/probe.h"
+#include "filters/asvgf/asvgf_params.h"
 #include "filters/baselines/eaw.h"
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/tonemap.h"
@@ -66,18 +67,25 @@ class Method {
 // (Dammertz 2010, no temporal reuse), "eaw-accum"
 // (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated). Throws rtdr::Error for an
 // unknown name, listing the known ones.
-// Every parameter table a method reads, each at its declared defaults unless set: SVGF's (svgf_params.h), EAW's
-// (eaw.h), tone mapping's (tonemap.h) and TAA's (taa.h). Made from SvgfParams alone, the others keep their defaults.
+// Every parameter table a method reads, each at its declared defaults unless set: SVGF's (svgf_params.h), A-SVGF's
+// (asvgf_params.h), EAW's (eaw.h), tone mapping's (tonemap.h) and TAA's (taa.h). Made from SvgfParams alone, the
+// others keep their defaults.
 struct MethodParams {
   MethodParams(const SvgfParams& svgf_params = {}) : svgf(svgf_params) {}  // NOLINT: implicit on purpose
   SvgfParams svgf;
+  AsvgfParams asvgf;
   EawParams eaw;
   TonemapParams tonemap;
   TaaParams taa;
 };
 
-// `params` are the tunables; a method ignores the tables of the stages it does not run.
-std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params = {});
+// A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf:
+// alpha = alpha_moments = 0.1 [ASVGF18 Sec. 5] and the 3x3 box a-trous [ASVGF18 Sec. 4]). Throws for an unknown name.
+MethodParams method_defaults(const std::string& name);
+// `params` are the tunables; a method ignores the tables of the stages it does not run. Without them, the
+// method's own defaults.
+std::unique_ptr<Method> make_method(const std::string& name);
+std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
 // method, gpu/svgf_vulkan.h). Throws like make_method().
 struct SvgfOptions;

@@ -8,11 +8,29 @@ namespace rtdr {
 const std::vector<PassDecl>& filter_passes() {
   using namespace layers;
   static const std::vector<PassDecl> passes = {
+      {"gradient", "filters/asvgf/gradient_image.cpp", "[ASVGF18 Sec. 3.4, Eq. 3, Eq. 13]", PassScope::Stream,
+       "the stream's 1-spp illumination; gradient.source, gradient.prev_<stream>; depth.Z, depth.dX/dY, normal, "
+       "id.mesh; the stratum size in the header (rtdr.gradient.stratum_size)",
+       {&kGradientDelta, &kGradientNorm, &kGradientLuminance, &kGradientVariance},
+       {},
+       "the stratum, its representative pixel, the gradient sample's two luminances, delta and Delta, and the "
+       "stratum's mean luminance and variance"},
+      {"gradient_atrous", "filters/asvgf/gradient_atrous.cpp", "[ASVGF18 Eq. 7-12]", PassScope::StreamLevel,
+       "iteration i - 1's delta^, Delta^, l^ and Var(l^) (iteration 0: the gradient pass), on the stratum grid",
+       {&kGradientLevelDelta, &kGradientLevelNorm, &kGradientLevelLuminance, &kGradientLevelVariance},
+       {"sigma_z", "sigma_n", "sigma_l", "epsilon", "gradient_levels"},
+       "z, n, l^ and g3x3(Var) at the stratum, then per tap: w_z, w_n, w_l, h w, delta and Delta; then the sums "
+       "and the next iteration's values"},
+      {"adaptive_alpha", "filters/asvgf/adaptive_alpha.cpp", "[ASVGF18 Eq. 14-15, Sec. 3.5]", PassScope::Stream,
+       "the last reconstruction iteration's delta^ and Delta^",
+       {&kLambda, &kAlpha},
+       {"alpha", "alpha_max_radius"},
+       "the pixel's stratum, its delta^, Delta^ and lambda, the largest lambda around it and alpha_i"},
       {"temporal", "filters/svgf/temporal.cpp", "[SVGF17 Sec. 4.1, 4.2]", PassScope::Stream,
        "the stream's 1-spp illumination; depth.Z, normal, id.mesh and motion; last frame's colour history, "
-       "moments, history length and G-buffer",
+       "moments, history length and G-buffer; with A-SVGF the adaptive_alpha pass's lambda",
        {&kTemporal, &kMoment1, &kMoment2, &kHistoryLength},
-       {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history"},
+       {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
        "the back-projected position p', each bilinear tap's consistency tests (inside, mesh id, depth, normal) and "
        "weight, the 3x3 fallback when no tap is consistent, then alpha, C', mu1', mu2' and n"},
       {"variance", "filters/svgf/variance.cpp", "[SVGF17 Sec. 4.2]", PassScope::Stream,

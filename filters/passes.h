@@ -69,6 +69,34 @@ inline constexpr LayerDecl kFiltered{"filter.<s>.filtered", LayerType::Rgb, Laye
                                      "[SVGF17 Sec. 3]"};
 inline constexpr LayerDecl kTonemapped{"filter.tonemapped", LayerType::Rgb, LayerUse::Dump,
                                        "`color` tone mapped, before TAA", "[Reinhard02 Eq. 3]"};
+// A-SVGF's gradient passes [ASVGF18 Sec. 3.4, 3.5]: per-stratum values, replicated to every pixel of the stratum.
+inline constexpr LayerDecl kGradientDelta{"filter.<s>.gradient.delta", LayerType::Scalar, LayerUse::Dump,
+                                          "the stratum's temporal gradient delta, 0 where no gradient sample landed",
+                                          "[ASVGF18 Eq. 3]"};
+inline constexpr LayerDecl kGradientNorm{"filter.<s>.gradient.norm", LayerType::Scalar, LayerUse::Dump,
+                                         "the stratum's Delta, the larger of the two luminances; 0 without a sample",
+                                         "[ASVGF18 Eq. 13]"};
+inline constexpr LayerDecl kGradientLuminance{"filter.<s>.gradient.luminance", LayerType::Scalar, LayerUse::Dump,
+                                              "the mean luminance of the stratum's pixels, l^(0)", "[ASVGF18 Sec. 3.4]"};
+inline constexpr LayerDecl kGradientVariance{"filter.<s>.gradient.variance", LayerType::Scalar, LayerUse::Dump,
+                                             "the variance of the luminance in the stratum", "[ASVGF18 Sec. 3.4]"};
+inline constexpr LayerDecl kGradientLevelDelta{"filter.<s>.gradient.level<i>.delta", LayerType::Scalar,
+                                               LayerUse::Dump, "delta^ after reconstruction iteration i",
+                                               "[ASVGF18 Eq. 12]"};
+inline constexpr LayerDecl kGradientLevelNorm{"filter.<s>.gradient.level<i>.norm", LayerType::Scalar, LayerUse::Dump,
+                                              "Delta^ after reconstruction iteration i", "[ASVGF18 Eq. 12]"};
+inline constexpr LayerDecl kGradientLevelLuminance{"filter.<s>.gradient.level<i>.luminance", LayerType::Scalar,
+                                                   LayerUse::Dump, "l^ after reconstruction iteration i",
+                                                   "[ASVGF18 Eq. 7]"};
+inline constexpr LayerDecl kGradientLevelVariance{"filter.<s>.gradient.level<i>.variance", LayerType::Scalar,
+                                                  LayerUse::Dump, "Var(l^) after reconstruction iteration i",
+                                                  "[SVGF17 Sec. 4.3]"};
+inline constexpr LayerDecl kLambda{"filter.<s>.lambda", LayerType::Scalar, LayerUse::Dump,
+                                   "the stratum's lambda = min(1, abs(delta^) / Delta^), 0 where Delta^ = 0",
+                                   "[ASVGF18 Eq. 14]"};
+inline constexpr LayerDecl kAlpha{"filter.<s>.alpha", LayerType::Scalar, LayerUse::Dump,
+                                  "the temporal weight alpha_i from the largest lambda of the 3x3 strata around",
+                                  "[ASVGF18 Eq. 15, Sec. 3.5]"};
 }  // namespace layers
 
 // What a pass runs on: the whole frame once, each illumination stream, or each level of each stream.

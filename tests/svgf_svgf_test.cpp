@@ -12,6 +12,7 @@
 #include "core/parallel.h"
 #include "filters/method.h"
 #include "scenes/gltf_loader.h"
+#include "trace/gradients.h"
 #include "trace/render_frame.h"
 
 #include <catch2/catch.hpp>
@@ -47,6 +48,20 @@ const Frame& rendered(const std::string& scene, int index, int w, int h, uint32_
     settings.seed = seed;
     settings.spp = spp;
     it = frames.emplace(key, render_frame(shipped_scene(scene), index, w, h, settings)).first;
+  }
+  return it->second;
+}
+
+// Frame `index` of a shipped scene with A-SVGF's gradient samples (trace/gradients.h), each frame from the one
+// before, kept like rendered(): input every method reads, asvgf included.
+const Frame& rendered_with_gradients(const std::string& scene, int index, int w, int h) {
+  using Key = std::tuple<std::string, int, int, int>;
+  static std::map<Key, Frame> frames;
+  const Key key{scene, index, w, h};
+  auto it = frames.find(key);
+  if (it == frames.end()) {
+    const Frame* prev = index > 0 ? &rendered_with_gradients(scene, index - 1, w, h) : nullptr;
+    it = frames.emplace(key, render_frame_with_gradients(shipped_scene(scene), index, w, h, {}, {}, prev)).first;
   }
   return it->second;
 }
@@ -116,6 +131,7 @@ struct ThreadCountGuard {
 }  // namespace
 
 TEST_CASE("every method filters a short sequence into finite frames of the input's size") {
+  // Frames with gradient samples: every method reads them, asvgf needs them.
   const int w = 48, h = 27;
   for (const std::string& name : method_names()) {
     INFO("method " << name);
@@ -124,7 +140,7 @@ TEST_CASE("every method filters a short sequence into finite frames of the input
     CHECK(method->name() == name);
     for (int f = 0; f < 4; ++f) {
       INFO("frame " << f);
-      const Frame out = method->filter(rendered("cornell", f, w, h));
+      const Frame out = method->filter(rendered_with_gradients("cornell", f, w, h));
       CHECK(out.width() == w);
       CHECK(out.height() == h);
       const RgbPlane color = rgb_plane(out, "color"), display = rgb_plane(out, "display");
@@ -141,7 +157,21 @@ TEST_CASE("an unknown method name throws rtdr::Error listing the known ones") {
   CHECK_THROWS_AS(make_method("svfg"), Error);
   CHECK_THROWS_WITH(make_method("svfg"), Catch::Contains("svfg"));
   for (const std::string& name : method_names()) CHECK_THROWS_WITH(make_method(""), Catch::Contains(name));
-  CHECK(method_names() == std::vector<std::string>{"svgf", "accum", "eaw", "eaw-accum", "none"});
+  CHECK(method_names() == std::vector<std::string>{"svgf", "asvgf", "accum", "eaw", "eaw-accum", "none"});
+}
+
+TEST_CASE("asvgf refuses frames rendered without gradient samples, naming what they lack") {
+  const std::unique_ptr<Method> asvgf = make_method("asvgf");
+  CHECK_THROWS_WITH(asvgf->filter(rendered("cornell", 0, 48, 27)), Catch::Contains("rtdr render --gradients"));
+  Frame odd = rendered_with_gradients("cornell", 0, 48, 27);
+  odd.attributes["rtdr.gradient.stratum_size"] = "three";
+  CHECK_THROWS_WITH(asvgf->filter(odd), Catch::Contains("'three' is not a stratum size"));
+  // Its own defaults where the paper departs from SVGF's: alpha 0.1 [ASVGF18 Sec. 5], the 3x3 box [Sec. 4].
+  const MethodParams defaults = method_defaults("asvgf");
+  CHECK(defaults.svgf.alpha == 0.1f);
+  CHECK(defaults.svgf.alpha_moments == 0.1f);
+  CHECK(defaults.svgf.kernel_size == 3);
+  CHECK(method_defaults("svgf").svgf.alpha == 0.2f);
 }
 
 TEST_CASE("\"none\" returns the input remodulated: emission + max(albedo, 0.001) (direct + indirect)") {

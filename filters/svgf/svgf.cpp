@@ -8,6 +8,7 @@
 #include "filters/svgf/variance.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 
 namespace rtdr {
@@ -17,6 +18,7 @@ using namespace layers;
 
 SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) {
   validate(options_.svgf);
+  validate(options_.asvgf);
   validate(options_.eaw);
   validate(options_.tonemap);
   validate(options_.taa_params);
@@ -52,13 +54,54 @@ const RgbPlane& SvgfFilter::Stream::filtered() const {
   return temporal.color;
 }
 
+void SvgfFilter::adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name) {
+  const SvgfParams& p = options_.svgf;
+  const int s_size = stratum_size_, w = s.noisy.width, h = s.noisy.height;
+  // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
+  time_pass("gradient", [&] { s.gradient = gradient_image(s.noisy, gradient_source_, s.prev_luminance, surface_, s_size); });
+  const auto dump_strata = [&](const LayerDecl& layer, int level, const FloatPlane& strata) {
+    if (dump) dump_layer(dump, layer, name, level, replicate_strata(strata, s_size, w, h));
+  };
+  dump_strata(kGradientDelta, -1, s.gradient.values.delta);
+  dump_strata(kGradientNorm, -1, s.gradient.values.norm);
+  dump_strata(kGradientLuminance, -1, s.gradient.values.luminance);
+  dump_strata(kGradientVariance, -1, s.gradient.values.variance);
+  // 2. Its reconstruction, iteration k reading iteration k - 1 [ASVGF18 Eq. 7-12].
+  s.gradient_levels.clear();
+  for (int level = 0; level < options_.asvgf.gradient_levels; ++level) {
+    time_pass("gradient_atrous", [&] {
+      const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels.back();
+      s.gradient_levels.push_back(gradient_atrous_level(in, s.gradient, level, p));
+    });
+    dump_strata(kGradientLevelDelta, level, s.gradient_levels.back().delta);
+    dump_strata(kGradientLevelNorm, level, s.gradient_levels.back().norm);
+    dump_strata(kGradientLevelLuminance, level, s.gradient_levels.back().luminance);
+    dump_strata(kGradientLevelVariance, level, s.gradient_levels.back().variance);
+  }
+  // 3. lambda and alpha_i [ASVGF18 Eq. 14-15, Sec. 3.5].
+  const GradientValues& reconstructed = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
+  time_pass("adaptive_alpha", [&] {
+    s.adaptive = adaptive_alpha_pass(reconstructed, s_size, w, h, p.alpha, options_.asvgf.alpha_max_radius);
+  });
+  dump_strata(kLambda, -1, s.adaptive.lambda);
+  dump_layer(dump, kAlpha, name, -1, s.adaptive.alpha);
+}
+
+std::optional<TemporalAdaptive> SvgfFilter::temporal_adaptive(const Stream& s) const {
+  if (!options_.adaptive) return std::nullopt;
+  return TemporalAdaptive{&s.adaptive.lambda_max, options_.asvgf.history_rule == 0};
+}
+
 const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name) {
   const SvgfParams& p = options_.svgf;
   s.noisy = std::move(noisy);
+  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5].
+  if (options_.adaptive) adaptive_alpha_stream(s, dump, name);
   // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
   //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
   s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
-  time_pass("temporal", [&] { s.temporal = temporal_pass(s.noisy, surface_, s.seen_history, p); });
+  const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
+  time_pass("temporal", [&] { s.temporal = temporal_pass(s.noisy, surface_, s.seen_history, p, adaptive ? &*adaptive : nullptr); });
   dump_layer(dump, kTemporal, name, -1, s.temporal.color);
   dump_layer(dump, kMoment1, name, -1, s.temporal.moment1);
   dump_layer(dump, kMoment2, name, -1, s.temporal.moment2);
@@ -109,6 +152,11 @@ InputChannels svgf_input_channels(const SvgfOptions& options) {
   if (options.spatial == SpatialFilter::Eaw)
     for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
   c.uints = {"id.mesh"};
+  if (options.adaptive) {  // the gradient samples of trace/gradients.h
+    c.floats.push_back("gradient.prev_direct");
+    c.floats.push_back("gradient.prev_indirect");
+    c.uints.push_back("gradient.source");
+  }
   return c;
 }
 
@@ -124,6 +172,20 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
+  if (options_.adaptive) {
+    // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
+    const auto it = in.attributes.find("rtdr.gradient.stratum_size");
+    if (it == in.attributes.end())
+      throw Error((in.source.empty() ? std::string("the input frame") : in.source) + ": method " + options_.name +
+                  " needs frames rendered with gradient samples (rtdr render --gradients): no rtdr.gradient.stratum_size");
+    const char *first = it->second.data(), *last = first + it->second.size();
+    const auto [end, ec] = std::from_chars(first, last, stratum_size_);
+    if (ec != std::errc() || end != last || stratum_size_ < 1 || stratum_size_ > 64)
+      throw Error(in.source + ": rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)");
+    gradient_source_ = in.uint_channel("gradient.source");
+    direct_.prev_luminance = in.float_channel("gradient.prev_direct");
+    indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");
+  }
   // The dump receives planes of this frame's size.
   if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
 
@@ -155,7 +217,10 @@ const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
 }
 
 std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
-  std::vector<const PassDecl*> passes = {&find_pass("temporal")};
+  std::vector<const PassDecl*> passes;
+  if (options.adaptive)
+    for (const char* name : {"gradient", "gradient_atrous", "adaptive_alpha"}) passes.push_back(&find_pass(name));
+  passes.push_back(&find_pass("temporal"));
   if (options.spatial == SpatialFilter::Atrous)
     for (const char* name : {"variance", "prefilter", "atrous"}) passes.push_back(&find_pass(name));
   if (options.spatial == SpatialFilter::Eaw) passes.push_back(&find_pass("eaw"));
@@ -173,7 +238,8 @@ std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) {
   for (const PassDecl* pass : svgf_passes(options))
     for (const LayerDecl* layer : pass->writes)
       if (layer->use == LayerUse::Dump)
-        for (std::string& channel : expand_layer(*layer, levels))
+        for (std::string& channel :
+             expand_layer(*layer, pass->name == "gradient_atrous" ? options.asvgf.gradient_levels : levels))
           if (std::find(channels.begin(), channels.end(), channel) == channels.end())
             channels.push_back(std::move(channel));
   return channels;
@@ -199,7 +265,9 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
   }
   const Stream& s = stream(stream_name);
   if (find_pass(pass).scope == PassScope::StreamLevel) {
-    const size_t count = pass == "eaw" ? s.eaw_levels.size() : s.levels.size();
+    const size_t count = pass == "eaw"               ? s.eaw_levels.size()
+                         : pass == "gradient_atrous" ? s.gradient_levels.size()
+                                                     : s.levels.size();
     if (level < 0 || size_t(level) >= count)
       throw Error("--level " + std::to_string(level) + " is not one of the " + std::to_string(count) + " levels run");
   }
@@ -207,7 +275,20 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
   // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
   const SvgfParams& p = options_.svgf;
   Probe probe;
-  if (pass == "temporal") temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe);
+  const int sx = stratum_size_ > 0 ? x / stratum_size_ : 0, sy = stratum_size_ > 0 ? y / stratum_size_ : 0;
+  if (pass == "gradient")
+    gradient_stratum(s.noisy, gradient_source_, s.prev_luminance, surface_, stratum_size_, sx, sy, &probe);
+  if (pass == "gradient_atrous") {
+    const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels[size_t(level - 1)];
+    gradient_atrous_pixel(in, prefilter_variance(in.variance), s.gradient, level, p, sx, sy, &probe);
+  }
+  if (pass == "adaptive_alpha") {
+    const GradientValues& g = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
+    adaptive_alpha_pixel(g, stratum_size_, p.alpha, options_.asvgf.alpha_max_radius, x, y, &probe);
+  }
+  const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
+  if (pass == "temporal")
+    temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);
   if (pass == "variance") variance_pixel(s.temporal, surface_, p, x, y, &probe);
   if (pass == "prefilter") prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
   if (pass == "atrous")

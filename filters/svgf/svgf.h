@@ -3,10 +3,17 @@
 //   temporal accumulation (temporal.h) -> variance estimate (variance.h) -> a-trous levels (atrous.h),
 //   the level `history_level` becoming next frame's colour history;
 // then remodulation and recombination (modulate.h), tone mapping (tonemap.h) and TAA (filters/taa/taa.h).
+// With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first turns the frame's gradient samples into a per-pixel
+// alpha: gradient image (filters/asvgf/gradient_image.h) -> reconstruction iterations (gradient_atrous.h) ->
+// lambda and alpha_i (adaptive_alpha.h), which the temporal accumulation uses in place of the constant alpha.
 // The same class runs the baselines of filters/baselines/ by switching stages off or swapping the spatial
 // filter, so every method shares the exact same passes (README.md in this folder lists them).
 #pragma once
 
+#include "filters/asvgf/adaptive_alpha.h"
+#include "filters/asvgf/asvgf_params.h"
+#include "filters/asvgf/gradient_atrous.h"
+#include "filters/asvgf/gradient_image.h"
 #include "filters/baselines/eaw.h"
 #include "filters/method.h"
 #include "filters/passes.h"
@@ -17,6 +24,8 @@
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
 
+#include <optional>
+
 namespace rtdr {
 
 enum class SpatialFilter { None, Atrous, Eaw };
@@ -26,7 +35,9 @@ struct SvgfOptions {
   bool temporal = true;                        // temporal accumulation of colour and moments
   SpatialFilter spatial = SpatialFilter::Atrous;
   bool taa = true;                             // temporal antialiasing after tone mapping
+  bool adaptive = false;                       // A-SVGF's adaptive alpha from gradient samples [ASVGF18 Sec. 3.5]
   SvgfParams svgf;
+  AsvgfParams asvgf;
   EawParams eaw;
   TonemapParams tonemap;
   TaaParams taa_params;
@@ -57,6 +68,10 @@ class SvgfFilter : public Method {
   struct Stream {
     TemporalHistory history;          // colour history, moments, history length, previous G-buffer
     RgbPlane noisy;                   // this frame's input
+    FloatPlane prev_luminance;        // A-SVGF: gradient.prev_<stream>, the previous frame's luminance at j
+    GradientImage gradient;           // A-SVGF: the gradient image
+    std::vector<GradientValues> gradient_levels;  // each reconstruction iteration's output
+    AdaptiveAlpha adaptive;           // lambda and alpha_i
     TemporalHistory seen_history;     // the history the temporal pass read this frame
     TemporalOutput temporal;          // its output
     FloatPlane variance;              // the variance estimate
@@ -70,12 +85,18 @@ class SvgfFilter : public Method {
 
   // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
   const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name);
+  // A-SVGF's gradient passes of one stream [ASVGF18 Sec. 3.4, 3.5].
+  void adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name);
+  // What the temporal pass of stream `s` reads of A-SVGF (null without it).
+  std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
   double time_pass(const std::string& pass, const std::function<void()>& run);
   const Stream& stream(const std::string& name) const;
 
   SvgfOptions options_;
   Stream direct_, indirect_;
   SurfacePlanes surface_, prev_surface_;
+  UIntPlane gradient_source_;  // A-SVGF: gradient.source
+  int stratum_size_ = 0;       // A-SVGF: the render's stratum size
   RgbPlane albedo_, emission_, position_;
   RgbPlane color_, tonemapped_, taa_history_, seen_taa_history_, display_;
 };

@@ -5,6 +5,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/asvgf/adaptive_alpha.h"
 
 #include <algorithm>
 #include <cmath>
@@ -133,20 +134,27 @@ TemporalPixel disocclusion(glm::vec3 C, float l, Probe* probe) {
 }
 
 // The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp.
-TemporalPixel accumulate(glm::vec3 C, float l, const HistorySample& h, const SvgfParams& params, Probe* probe) {
+// With A-SVGF's lambda, alpha and alpha_mu become alpha_i of [ASVGF18 Eq. 15] first.
+TemporalPixel accumulate(glm::vec3 C, float l, const HistorySample& h, const SvgfParams& params, float lambda,
+                         Probe* probe) {
   note_group(probe, "accumulate");
   // n_i = n_{i-1} + 1, capped at n_max when the table sets one (max_history > 0).
   float n = h.length + 1.0f;
   if (params.max_history > 0) n = std::min(n, float(params.max_history));
   note(probe, "n_i", n);
   // alpha_eff = max(alpha, 1/n): a running mean while 1/n > alpha, then the paper's EMA (a deviation, temporal.h).
-  const float alpha = std::max(params.alpha, 1.0f / n);
-  const float alpha_mu = std::max(params.alpha_moments, 1.0f / n);
+  const float alpha_i = adaptive_alpha(params.alpha, lambda), alpha_mu_i = adaptive_alpha(params.alpha_moments, lambda);
+  if (lambda > 0.0f) {
+    note(probe, "lambda", lambda, "[ASVGF18 Eq. 14], the maximum over 3x3 strata");
+    note(probe, "alpha_i", alpha_i, "[ASVGF18 Eq. 15] (1 - lambda) alpha + lambda");
+  }
+  const float alpha = std::max(alpha_i, 1.0f / n);
+  const float alpha_mu = std::max(alpha_mu_i, 1.0f / n);
   note(probe, "alpha_eff", alpha, "[SVGF17 Sec. 4.1] alpha, Falcor's max(alpha, 1/n)");
   note(probe, "alpha_mu_eff", alpha_mu, "[SVGF17 Sec. 4.2] moments' alpha, max(alpha_mu, 1/n)");
   TemporalPixel out;
   out.length = n;
-  // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation]
+  // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation], A-SVGF's [ASVGF18 Eq. 1]
   out.color = alpha * C + (1.0f - alpha) * h.color;
   note(probe, "C'_i", out.color, "[SVGF17 Sec. 4.1] C' = alpha C + (1 - alpha) C'_{i-1}");
   // mu1'_i = alpha_mu l + (1 - alpha_mu) mu1'_{i-1}  [SVGF17 Sec. 4.2, accumulated like the colour]
@@ -221,7 +229,7 @@ bool temporal_tap_consistent(const SurfacePlanes& cur, const SurfacePlanes& prev
 }
 
 TemporalPixel temporal_pixel(const RgbPlane& noisy, const SurfacePlanes& cur, const TemporalHistory& prev,
-                             const SvgfParams& params, int x, int y, Probe* probe) {
+                             const SvgfParams& params, int x, int y, Probe* probe, const TemporalAdaptive* adaptive) {
   note_group(probe, "input");
   const bool covered = cur.covered(x, y);
   note(probe, "covered", float(covered));
@@ -247,17 +255,26 @@ TemporalPixel temporal_pixel(const RgbPlane& noisy, const SurfacePlanes& cur, co
   // may go either way at .5.
   h.length = std::floor(h.length + 0.5f);
   note(probe, "n_{i-1}", h.length);
-  return accumulate(C, l, h, params, probe);
+  // A-SVGF: the history keeps the weight 1 - lambda, and with restart_history its length falls alike, so that a
+  // dropped history counts as a disocclusion [ASVGF18 Sec. 4] (temporal.h).
+  const float lambda = adaptive ? adaptive->lambda->at(x, y) : 0.0f;
+  if (adaptive && adaptive->restart_history) {
+    h.length *= 1.0f - lambda;
+    note(probe, "(1 - lambda) n_{i-1}", h.length, "[ASVGF18 Sec. 4] a dropped history restarts");
+  }
+  return accumulate(C, l, h, params, lambda, probe);
 }
 
 TemporalOutput temporal_pass(const RgbPlane& noisy, const SurfacePlanes& cur, const TemporalHistory& prev,
-                             const SvgfParams& params) {
+                             const SvgfParams& params, const TemporalAdaptive* adaptive) {
   check_sizes(noisy, cur, prev);
+  if (adaptive && (adaptive->lambda->width != noisy.width || adaptive->lambda->height != noisy.height))
+    throw Error("temporal pass: the lambda plane is not the frame's size");
   const int w = noisy.width, h = noisy.height;
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   parallel_rows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {
-      const TemporalPixel p = temporal_pixel(noisy, cur, prev, params, x, y);
+      const TemporalPixel p = temporal_pixel(noisy, cur, prev, params, x, y, nullptr, adaptive);
       out.color.at(x, y) = p.color;
       out.moment1.at(x, y) = p.moment1;
       out.moment2.at(x, y) = p.moment2;

@@ -1,0 +1,59 @@
+// The adaptive temporal weight [ASVGF18 Sec. 3.5, Eq. 14-15]. See adaptive_alpha.h.
+#include "filters/asvgf/adaptive_alpha.h"
+
+#include "core/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rtdr {
+
+float gradient_lambda(float delta, float norm) {
+  // lambda(p) = min(1, |delta^(p)| / Delta^(p)) [ASVGF18 Eq. 14]; no sample in reach (Delta^ = 0): 0.
+  return norm > 0.0f ? std::min(1.0f, std::abs(delta) / norm) : 0.0f;
+}
+
+float adaptive_alpha(float alpha, float lambda) {
+  // alpha_i(p) = (1 - lambda(p)) alpha + lambda(p) [ASVGF18 Eq. 15].
+  return (1.0f - lambda) * alpha + lambda;
+}
+
+AdaptiveAlphaPixel adaptive_alpha_pixel(const GradientValues& g, int s, float alpha, int radius, int x, int y,
+                                        Probe* probe) {
+  const int sx = x / s, sy = y / s;
+  note(probe, "stratum", glm::vec2(float(sx), float(sy)), "[ASVGF18 Sec. 3.3]");
+  // The maximum over the (2r + 1)^2 strata around (sx, sy) [ASVGF18 Sec. 3.5].
+  AdaptiveAlphaPixel out;
+  for (int qy = sy - radius; qy <= sy + radius; ++qy)
+    for (int qx = sx - radius; qx <= sx + radius; ++qx) {
+      if (!inside(g.norm, qx, qy)) continue;
+      const float lambda = gradient_lambda(g.delta.at(qx, qy), g.norm.at(qx, qy));
+      if (probe && qx == sx && qy == sy) {
+        note(probe, "delta^(p)", g.delta.at(qx, qy), "[ASVGF18 Eq. 12]");
+        note(probe, "Delta^(p)", g.norm.at(qx, qy), "[ASVGF18 Eq. 12, Eq. 13]");
+        note(probe, "lambda(p)", lambda, "[ASVGF18 Eq. 14]");
+      }
+      out.lambda_max = std::max(out.lambda_max, lambda);
+    }
+  note(probe, "max lambda over the strata around p", out.lambda_max, "[ASVGF18 Sec. 3.5]");
+  out.alpha = adaptive_alpha(alpha, out.lambda_max);
+  note(probe, "alpha", alpha, "[ASVGF18 Sec. 5]");
+  note(probe, "alpha_i", out.alpha, "[ASVGF18 Eq. 15]");
+  return out;
+}
+
+AdaptiveAlpha adaptive_alpha_pass(const GradientValues& g, int s, int width, int height, float alpha, int radius) {
+  AdaptiveAlpha out{FloatPlane(g.norm.width, g.norm.height), FloatPlane(width, height), FloatPlane(width, height)};
+  for (int sy = 0; sy < g.norm.height; ++sy)
+    for (int sx = 0; sx < g.norm.width; ++sx) out.lambda.at(sx, sy) = gradient_lambda(g.delta.at(sx, sy), g.norm.at(sx, sy));
+  parallel_rows(height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      const AdaptiveAlphaPixel p = adaptive_alpha_pixel(g, s, alpha, radius, x, y);
+      out.lambda_max.at(x, y) = p.lambda_max;
+      out.alpha.at(x, y) = p.alpha;
+    }
+  });
+  return out;
+}
+
+}  // namespace rtdr

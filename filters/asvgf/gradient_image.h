@@ -1,0 +1,64 @@
+// A-SVGF's gradient image: one value per stratum of the frame [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
+//
+// Pass: gradient_image(noisy, gradient samples, surface, s) -> per-stratum planes of ceil(W/s) x ceil(H/s).
+//   in:  one stream's noisy (demodulated) colour C_i; the frame's gradient samples (gradient.source, and the
+//        previous frame's luminance at each source, gradient.prev_<stream>; trace/gradients.h); the G-buffer;
+//        the stratum size s of the render (its header's rtdr.gradient.stratum_size)
+//   out: per stratum p
+//        delta(p) = l(C_i(jbar)) - f_{i-1}(j)               the temporal gradient [ASVGF18 Eq. 3]
+//        Delta(p) = max(l(C_i(jbar)), f_{i-1}(j))           its normalisation [ASVGF18 Eq. 13]
+//          both 0 where no gradient sample landed in the stratum
+//        l^(0)(p) the mean luminance of the stratum's pixels, Var(l^(0)(p)) their variance [ASVGF18 Sec. 3.4]
+//        z, grad z, n and the mesh id of the stratum's representative pixel: the geometry the reconstruction's
+//        edge-stopping functions compare [ASVGF18 Eq. 9-10]
+//
+// Choices the paper leaves open (filters/asvgf/README.md, "Deviations and choices"):
+// - A stratum's geometry is that of its centre pixel (s/2, s/2), clipped to a partial stratum; when the centre
+//   sees no surface, the first pixel in raster order that does. A stratum where no pixel sees a surface has
+//   mesh kInvalidId: the reconstruction skips it, as SVGF's a-trous skips surfaceless pixels.
+// - l^(0) and Var(l^(0)) are over the stratum's pixels that see a surface; Var is the population variance of
+//   those luminances ("the variance of the luminance inside of one stratum"), not the variance of their mean.
+// - A stratum holds at most one gradient sample (trace/gradients.cpp keeps one per stratum); a second one is a
+//   malformed frame and throws.
+#pragma once
+
+#include "filters/image.h"
+#include "filters/probe.h"
+#include "filters/surface_planes.h"
+
+namespace rtdr {
+
+// The four values the reconstruction filters, per stratum [ASVGF18 Eq. 7, Eq. 12].
+struct GradientValues {
+  FloatPlane delta;      // delta: the temporal gradient of luminance [ASVGF18 Eq. 3]
+  FloatPlane norm;       // Delta: max of the two luminances [ASVGF18 Eq. 13]
+  FloatPlane luminance;  // l^: the stratum's mean luminance [ASVGF18 Eq. 7]
+  FloatPlane variance;   // Var(l^) [ASVGF18 Eq. 11]
+};
+
+struct GradientImage {
+  int stratum_size = 0;
+  GradientValues values;
+  SurfacePlanes surface;  // per stratum: depth, depth_grad (per pixel, as depth.dX/dY), normal, mesh; no motion
+};
+
+// One stratum's values and geometry.
+struct GradientStratum {
+  float delta = 0.0f, norm = 0.0f, luminance = 0.0f, variance = 0.0f;
+  glm::ivec2 representative{-1};  // the pixel whose geometry the stratum takes; (-1, -1) when none sees a surface
+};
+
+// The golden per-stratum function: stratum (sx, sy) of s x s pixels.
+GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
+                                 const SurfacePlanes& surface, int s, int sx, int sy, Probe* probe = nullptr);
+
+// Every stratum (parallel over stratum rows, deterministic). Throws rtdr::Error when the planes' sizes disagree
+// or s < 1.
+GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
+                             const SurfacePlanes& surface, int s);
+
+// A per-stratum plane replicated to the frame's pixels (pixel (x, y) takes stratum (x / s, y / s)), so that
+// dumps stay frame-sized layers.
+FloatPlane replicate_strata(const FloatPlane& strata, int s, int width, int height);
+
+}  // namespace rtdr

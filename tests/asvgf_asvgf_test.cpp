@@ -1,0 +1,110 @@
+// Tests of the asvgf method on rendered frames with gradient samples [ASVGF18 Sec. 3-5]: the paper's oracles that
+// have exact answers. A static scene gives lambda = 0 and alpha_i = alpha; every emitter scaled by k at one frame
+// gives lambda = abs(k - 1) / max(k, 1) wherever a gradient sample reaches; emitters switching on from 0 give
+// lambda = 1, and the temporal output is then the frame's own sample: no lag.
+#include "filters/method.h"
+
+#include "core/color.h"
+#include "filters/image.h"
+#include "scenes/gltf_loader.h"
+#include "trace/gradients.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+using namespace rtdr;
+
+namespace {
+
+constexpr int kWidth = 48, kHeight = 27;
+
+// Frames 0..last of `scene` with gradient samples, each filtered by asvgf with its dump; the dumps are returned.
+std::vector<Frame> asvgf_dumps(const Scene& scene, int last, std::vector<Frame>* inputs = nullptr) {
+  const std::unique_ptr<Method> asvgf = make_method("asvgf");
+  std::vector<Frame> frames, dumps;
+  for (int f = 0; f <= last; ++f) {
+    frames.push_back(render_frame_with_gradients(scene, f, kWidth, kHeight, {}, {}, f ? &frames.back() : nullptr));
+    Frame dump(kWidth, kHeight);
+    asvgf->filter(frames.back(), &dump);
+    dumps.push_back(std::move(dump));
+  }
+  if (inputs) *inputs = std::move(frames);
+  return dumps;
+}
+
+// cornell (static camera, one light) with every emitter's strength multiplied by `before` until frame 2 and by
+// `after` from frame 2 on (a STEP track).
+Scene switched_cornell(float before, float after) {
+  Scene scene = load_scene("cornell");
+  for (Material& m : scene.materials) {
+    if (m.emissive == glm::vec3(0.0f)) continue;
+    m.emissive_strength_track.times = {0.0f, float(scene.time_of_frame(2) - 0.5 / scene.fps)};  // between 1 and 2
+    m.emissive_strength_track.values = {m.emissive_strength * before, m.emissive_strength * after};
+    m.emissive_strength_track.interpolation = Interpolation::Step;
+  }
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("asvgf on a static scene: lambda = 0 and alpha_i = alpha exactly, in both streams") {
+  const std::vector<Frame> dumps = asvgf_dumps(load_scene("static"), 3);
+  for (const char* stream : {"direct", "indirect"}) {
+    INFO(stream);
+    const std::string s(stream);
+    for (size_t f = 1; f < dumps.size(); ++f) {
+      for (float lambda : dumps[f].float_channel("filter." + s + ".lambda").data) CHECK(lambda == 0.0f);
+      for (float alpha : dumps[f].float_channel("filter." + s + ".alpha").data) CHECK(alpha == 0.1f);
+    }
+  }
+}
+
+TEST_CASE("asvgf: every emitter scaled by k at one frame gives lambda = abs(k - 1) / max(k, 1) wherever Delta^ > 0") {
+  for (const float k : {2.0f, 0.5f, 3.0f}) {
+    INFO("k = " << k);
+    const std::vector<Frame> dumps = asvgf_dumps(switched_cornell(1.0f, k), 2);
+    const Frame& d = dumps[2];
+    const float expected = std::abs(k - 1.0f) / std::max(k, 1.0f);
+    int reached = 0;
+    for (const char* stream : {"direct", "indirect"}) {
+      const std::string s(stream);
+      const FloatPlane& norm = d.float_channel("filter." + s + ".gradient.level4.norm");
+      const FloatPlane& lambda = d.float_channel("filter." + s + ".lambda");
+      const FloatPlane& alpha = d.float_channel("filter." + s + ".alpha");
+      for (size_t i = 0; i < norm.data.size(); ++i) {
+        if (norm.data[i] <= 0.0f) continue;
+        ++reached;
+        CHECK(lambda.data[i] == Approx(expected).epsilon(1e-5));
+        CHECK(alpha.data[i] == Approx(0.1f + 0.9f * expected).epsilon(1e-5));  // k = 2: 0.55
+      }
+    }
+    CHECK(reached > kWidth * kHeight);  // most of both streams' pixels
+    // The frame before the change is static: lambda = 0.
+    for (float lambda : dumps[1].float_channel("filter.direct.lambda").data) CHECK(lambda == 0.0f);
+  }
+}
+
+TEST_CASE("asvgf: emitters switching on from 0 give lambda = 1, and the temporal output is the new sample: no lag") {
+  std::vector<Frame> inputs;
+  const std::vector<Frame> dumps = asvgf_dumps(switched_cornell(0.0f, 1.0f), 2, &inputs);
+  const Frame& d = dumps[2];
+  const RgbPlane noisy = rgb_plane(inputs[2], "direct"), temporal = rgb_plane(d, "filter.direct.temporal");
+  const FloatPlane& norm = d.float_channel("filter.direct.gradient.level4.norm");
+  const FloatPlane& alpha = d.float_channel("filter.direct.alpha");
+  const FloatPlane& length = d.float_channel("filter.direct.history_length");
+  const UIntPlane& mesh = inputs[2].uint_channel("id.mesh");
+  int reached = 0;
+  for (size_t i = 0; i < norm.data.size(); ++i) {
+    if (norm.data[i] <= 0.0f || mesh.data[i] == kInvalidId) continue;  // a surface a gradient sample reaches
+    ++reached;
+    CHECK(d.float_channel("filter.direct.lambda").data[i] == 1.0f);
+    CHECK(alpha.data[i] == 1.0f);
+    CHECK(length.data[i] == 1.0f);  // the dropped history restarts (history_rule 0)
+    CHECK(temporal.data[i] == noisy.data[i]);
+  }
+  INFO(reached << " pixels reached");
+  CHECK(reached > kWidth * kHeight / 3);
+}

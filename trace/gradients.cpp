@@ -130,8 +130,11 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
       const SurfaceSample sample = prev.vis.sample(int(j % uint32_t(width)), int(j / uint32_t(width)));
       // Step 3: the same point at frame i's pose, seen by frame i's camera [ASVGF18 Sec. 3.1].
       const ForwardProjection f = forward_project(scene, cur.pose, cur.view, cur.vis, sample);
-      // Step 4: off screen or behind the camera, hidden by frame i's depth buffer, or where frame i sees nothing.
-      if (!f.on_screen || f.occluded || cur.vis.instance[cur.vis.index(f.pixel.x, f.pixel.y)] == kInvalidId) continue;
+      // Step 4: off screen or behind the camera, hidden by frame i's depth buffer, where frame i sees nothing, or
+      // where it sees another instance (gradients.h: a surface just behind another passes the depth test).
+      if (!f.on_screen || f.occluded) continue;
+      const uint32_t seen = cur.vis.instance[cur.vis.index(f.pixel.x, f.pixel.y)];
+      if (seen == kInvalidId || seen != sample.instance) continue;
       candidates[size_t(sy) * size_t(strata_x) + size_t(sx)] = GradientSample{j, f.pixel, sample, f.depth};
     }
   });

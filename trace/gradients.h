@@ -9,7 +9,7 @@
 //   2. in each s x s stratum of frame i-1 pick one pixel j (select_gradient_source);
 //   3. forward project its surface sample into frame i (motion/forward_project.h);
 //   4. discard it when frame i's depth buffer hides it, it lands off screen or behind the camera, or it lands
-//      where frame i sees no surface;
+//      where frame i sees no surface or another instance;
 //   5. keep at most one per stratum of frame i: the one with the smallest source index j (gradient_samples);
 //   6. merge it into frame i's visibility buffer at jbar = floor(its screen position), with frame i-1's seed at
 //      j [Eq. 6]: the G-buffer and motion are resolved from the merged buffer, so they describe G~ at jbar and
@@ -28,6 +28,11 @@
 //   smallest source index j wins, which a GPU port reproduces with one atomicMin per stratum; the output is the
 //   same for any thread count.
 // - A sample landing where frame i sees no surface crossed a silhouette: discarded, like an occluded one.
+// - A sample landing where frame i sees another instance is discarded too. The depth test alone (1 % tolerance,
+//   motion/forward_project.h) passes a surface just behind another: on falling-light, samples of the ceiling
+//   replaced the pixels of the light panel 2 cm below it, and the frame lost the light's emission there (its mean
+//   emission fell by 40 %, and every filter's brightness drifted by up to 40 %). Frame i sees the sample's own
+//   instance wherever the sample is truly visible, except within a pixel of a silhouette.
 // - Delta is taken per stream, on the luminance of the demodulated direct and indirect illumination: our SVGF
 //   filters the two streams separately, and both samples see the same point, hence the same albedo.
 // - The barycentrics of a merged pixel are those of j's centre in frame i-1: the point is G~, up to a pixel away

@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "gpu/svgf_vulkan.h"
 #include "scenes/gltf_loader.h"
+#include "trace/gradients.h"
 #include "trace/render_frame.h"
 
 #include <algorithm>
@@ -60,16 +61,22 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
 
 void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
   const std::vector<std::string> backends = parse_backends(o.backend);
-  // The method as a spec of rtdr eval: its name and the SVGF parameters that differ from their defaults (a spec
-  // names SVGF's table only; the other tables' flags still reach the method).
-  const std::string changed = changed_params(o.params.svgf);
+  // The method as a spec of rtdr eval: its name and the SVGF parameters that differ from the method's defaults (a
+  // spec names SVGF's table only; the other tables' flags still reach the method).
+  const std::string changed = changed_params(o.params.svgf, method_defaults(o.method).svgf);
   const std::string spec = o.method + (changed.empty() ? "" : ":" + changed);
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
     // A short sequence, rendered once (1 spp); each back end then filters it frame after frame.
     const int warmup = std::max(5, o.warmup);
     std::vector<Frame> frames;
-    for (int f = 0; f < warmup + o.runs; ++f) frames.push_back(render_frame(scene, f, size.width, size.height, {}));
+    // With gradient samples (trace/gradients.h) when the method reads them (asvgf), each frame from the one before.
+    const std::vector<std::string> uints = make_method(o.method, o.params)->inputs().uints;
+    const bool gradients = std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
+    for (int f = 0; f < warmup + o.runs; ++f)
+      frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, {}, {},
+                                                               frames.empty() ? nullptr : &frames.back())
+                                 : render_frame(scene, f, size.width, size.height, {}));
     std::map<std::string, std::map<std::string, double>> medians;  // backend -> pass -> ms
     std::vector<std::pair<std::string, double>> commands;           // the Vulkan frame's commands, in order
     std::string devices;
@@ -83,7 +90,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", spec.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), devices.c_str(), o.runs);
-    std::printf("  %-10s", "pass");
+    std::printf("  %-16s", "pass");
     for (const std::string& backend : backends) std::printf(" %10s", backend.c_str());
     const bool compare = medians.count("cpu") && medians.count("vulkan");
     if (compare) std::printf(" %10s", "cpu/vulkan");
@@ -92,7 +99,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     for (const auto& [backend, times] : medians)
       for (const auto& [pass, ms] : times) passes.insert(pass);
     for (const std::string& pass : passes) {
-      std::printf("  %-10s", pass.c_str());
+      std::printf("  %-16s", pass.c_str());
       for (const std::string& backend : backends) {
         const auto it = medians[backend].find(pass);
         if (it == medians[backend].end()) {

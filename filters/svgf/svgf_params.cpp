@@ -17,12 +17,12 @@ bool set_param(SvgfParams& params, const std::string& key, double value) {
   return false;
 }
 
-std::string changed_params(const SvgfParams& params) {
+std::string changed_params(const SvgfParams& params, const SvgfParams& base) {
   const std::vector<ParamInfo> table = svgf_param_table();
-  const std::vector<double> values = param_values(params);
+  const std::vector<double> values = param_values(params), base_values = param_values(base);
   std::string text;
   for (size_t i = 0; i < table.size(); ++i) {
-    if (values[i] == table[i].default_value) continue;
+    if (values[i] == base_values[i]) continue;
     char digits[32];  // every parameter is a float or a small int: the shortest digits that read back exactly
     const auto end = std::to_chars(digits, digits + sizeof digits, float(values[i])).ptr;
     text += (text.empty() ? "" : ":") + table[i].name + "=" + std::string(digits, end);

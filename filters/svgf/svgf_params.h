@@ -38,9 +38,10 @@ void validate(const SvgfParams& params);
 std::string describe(const SvgfParams& params);
 // Sets the parameter called `key` (a row name of the table); false when there is no such row.
 bool set_param(SvgfParams& params, const std::string& key, double value);
-// The parameters that differ from their defaults as "name=value" joined by ':', e.g. "atrous_levels=4:kernel_size=3"
-// ("" when none does): what follows "svgf:" in a method spec (eval/experiment.h), which set_param reads back.
-std::string changed_params(const SvgfParams& params);
+// The parameters that differ from `base` (the table's defaults, or a method's: filters/method.h) as "name=value"
+// joined by ':', e.g. "atrous_levels=4:kernel_size=3" ("" when none does): what follows "svgf:" in a method spec
+// (eval/experiment.h), which set_param reads back.
+std::string changed_params(const SvgfParams& params, const SvgfParams& base = {});
 
 }  // namespace rtdr
 #endif

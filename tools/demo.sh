@@ -14,5 +14,5 @@ bash tools/setup.sh
 build/app/rtdr render --scene pillars --frames 0-23 --size 320x180 --out out/demo/frames
 build/app/rtdr eval --scene pillars --methods all --sweep --frames 0-23 --size 320x180 --ref-spp 128 \
   --cache out/cache --out out/demo
-build/app/rtdr eval --scene static --methods svgf,accum,eaw,none --frames 0-23 --size 320x180 --ref-spp 16 \
+build/app/rtdr eval --scene static --methods svgf,asvgf,accum,eaw,none --frames 0-23 --size 320x180 --ref-spp 16 \
   --cache out/cache --out out/demo/static

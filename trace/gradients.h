@@ -17,7 +17,7 @@
 //   7. trace every pixel of the merged buffer: jbar's result is f_i(G~, xi_{i-1,j}), a valid sample of frame i;
 //   8. store frame i-1's luminance at j beside it (gradient.prev_direct, gradient.prev_indirect), so frame i
 //      alone holds both terms of delta.
-// The filter side (the gradient's reconstruction and the adaptive alpha [Sec. 3.4, 3.5]) is not implemented yet.
+// The filter side (the gradient's reconstruction and the adaptive alpha [Sec. 3.4, 3.5]) is filters/asvgf/.
 //
 // Choices the paper leaves open (also in trace/README.md, "Deviations and choices"):
 // - "Randomly" (step 2): the pixel is hash(global seed, frame i, stratum) modulo the number of pixels the stratum

@@ -99,7 +99,7 @@ void run_probe(const ProbeOptions& o) {
 Command add_filter_command(CLI::App& app) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
-  sub->add_option("--method", o->method, "svgf, asvgf, accum, eaw, eaw-accum or none")->capture_default_str();
+  sub->add_option("--method", o->method, "svgf, asvgf, a-eaw, accum, eaw, eaw-accum or none")->capture_default_str();
   sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports; svgf only)")
       ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();

@@ -33,12 +33,20 @@ void asvgf_defaults(MethodParams& p) {
   p.svgf.kernel_size = 3;       // "a simple 3x3 box filter" for the a-trous [ASVGF18 Sec. 4]
 }
 
-// svgf runs every stage of [SVGF17 Sec. 3]; asvgf is SVGF with the adaptive alpha and the 3x3 box [ASVGF18 Sec. 4]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
+// svgf runs every stage of [SVGF17 Sec. 3]; asvgf is SVGF with the adaptive alpha and the 3x3 box [ASVGF18 Sec. 4];
+// a-eaw is EAW followed by A-SVGF's adaptive temporal filter, our stand-in for the paper's A-RAE [ASVGF18 Fig. 6]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
 // is Dammertz 2010's edge-avoiding a-trous without temporal reuse, a baseline of [SVGF17 Sec. 5.1].
 const std::vector<MethodEntry>& registry() {
   static const std::vector<MethodEntry> methods = {
       {"svgf", [] { return stages("svgf", true, SpatialFilter::Atrous); }},
       {"asvgf", [] { return stages("asvgf", true, SpatialFilter::Atrous, true, true); }, asvgf_defaults},
+      {"a-eaw",
+       [] {
+         SvgfOptions o = stages("a-eaw", false, SpatialFilter::Eaw, true, true);
+         o.ema_after_spatial = true;
+         return o;
+       },
+       asvgf_defaults},
       {"accum", [] { return stages("accum", true, SpatialFilter::None); }},
       {"eaw", [] { return stages("eaw", false, SpatialFilter::Eaw); }},
       {"eaw-accum", [] { return stages("eaw-accum", true, SpatialFilter::Eaw); }},

@@ -56,6 +56,12 @@ const std::vector<PassDecl>& filter_passes() {
        {&kLevel, &kFiltered},
        {"sigma_rt", "sigma_n", "sigma_x", "levels"},
        "per tap: h, w_rt, w_n, w_x and w; then the sums and the level's colour"},
+      {"ema", "filters/svgf/temporal.cpp", "[ASVGF18 Eq. 1, Sec. 4]", PassScope::Stream,
+       "the spatial filter's result; depth.Z, normal, id.mesh and motion; last frame's EMA and G-buffer; the "
+       "adaptive_alpha pass's lambda",
+       {&kEma},
+       {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
+       "as the temporal pass, on the spatial filter's result instead of the 1-spp input"},
       {"modulate", "filters/svgf/modulate.cpp", "[SVGF17 Sec. 3]", PassScope::Frame,
        "both streams' filtered illumination; albedo, emission",
        {&kColor},

@@ -65,8 +65,11 @@ inline constexpr LayerDecl kLevelPrefiltered{"filter.<s>.level<i>.prefiltered_va
                                              "[SVGF17 Eq. 5]"};
 inline constexpr LayerDecl kFiltered{"filter.<s>.filtered", LayerType::Rgb, LayerUse::Dump,
                                      "the stream's result, the last level's output (methods without a spatial filter "
-                                     "do not write it: their result is filter.<s>.temporal)",
+                                     "do not write it: their result is filter.<s>.temporal; a-eaw's is filter.<s>.ema)",
                                      "[SVGF17 Sec. 3]"};
+inline constexpr LayerDecl kEma{"filter.<s>.ema", LayerType::Rgb, LayerUse::Dump,
+                                "the temporal EMA of the spatial filter's result, with the adaptive alpha (a-eaw)",
+                                "[ASVGF18 Eq. 1, Sec. 4]"};
 inline constexpr LayerDecl kTonemapped{"filter.tonemapped", LayerType::Rgb, LayerUse::Dump,
                                        "`color` tone mapped, before TAA", "[Reinhard02 Eq. 3]"};
 // A-SVGF's gradient passes [ASVGF18 Sec. 3.4, 3.5]: per-stratum values, replicated to every pixel of the stratum.

@@ -108,3 +108,34 @@ TEST_CASE("asvgf: emitters switching on from 0 give lambda = 1, and the temporal
   INFO(reached << " pixels reached");
   CHECK(reached > kWidth * kHeight / 3);
 }
+
+TEST_CASE("a-eaw is EAW followed by the adaptive EMA: on a static scene frame 1 is the mean of EAW's frames 0 and 1") {
+  // lambda = 0 on a static scene, and n = 2 at frame 1: alpha_eff = max(alpha_i, 1/n) = 1/2 [ASVGF18 Eq. 1, 15].
+  const Scene scene = load_scene("cornell");
+  const std::unique_ptr<Method> eaw = make_method("eaw"), a_eaw = make_method("a-eaw");
+  std::vector<Frame> frames, eaw_dumps, a_eaw_dumps;
+  for (int f = 0; f <= 1; ++f) {
+    frames.push_back(render_frame_with_gradients(scene, f, kWidth, kHeight, {}, {}, f ? &frames.back() : nullptr));
+    eaw_dumps.emplace_back(kWidth, kHeight);
+    a_eaw_dumps.emplace_back(kWidth, kHeight);
+    eaw->filter(frames.back(), &eaw_dumps.back());
+    a_eaw->filter(frames.back(), &a_eaw_dumps.back());
+  }
+  const UIntPlane& mesh = frames[1].uint_channel("id.mesh");
+  int covered = 0;
+  for (const char* stream : {"direct", "indirect"}) {
+    const std::string s(stream);
+    // Its spatial filter is EAW's, bit for bit.
+    CHECK(a_eaw_dumps[1].float_channel("filter." + s + ".filtered.G").data ==
+          eaw_dumps[1].float_channel("filter." + s + ".filtered.G").data);
+    const FloatPlane &ema = a_eaw_dumps[1].float_channel("filter." + s + ".ema.G"),
+                     &now = eaw_dumps[1].float_channel("filter." + s + ".filtered.G"),
+                     &before = eaw_dumps[0].float_channel("filter." + s + ".filtered.G");
+    for (size_t i = 0; i < ema.data.size(); ++i) {
+      if (mesh.data[i] == kInvalidId) continue;
+      ++covered;
+      CHECK(ema.data[i] == Approx(0.5f * (now.data[i] + before.data[i])).epsilon(1e-4).margin(1e-6));
+    }
+  }
+  CHECK(covered > kWidth * kHeight);
+}

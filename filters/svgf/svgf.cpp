@@ -48,7 +48,9 @@ const FloatPlane& SvgfFilter::Stream::level_input_variance(int level) const {
   return level == 0 ? variance : levels[size_t(level - 1)].variance;
 }
 
-const RgbPlane& SvgfFilter::Stream::filtered() const {
+const RgbPlane& SvgfFilter::Stream::filtered() const { return ema_enabled ? ema.color : spatial_result(); }
+
+const RgbPlane& SvgfFilter::Stream::spatial_result() const {
   if (!levels.empty()) return levels.back().color;
   if (!eaw_levels.empty()) return eaw_levels.back();
   return temporal.color;
@@ -134,7 +136,18 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
     }
     if (options_.eaw.levels > 0) history_level = 0;
   }
-  if (options_.spatial != SpatialFilter::None) dump_layer(dump, kFiltered, name, -1, s.filtered());
+  if (options_.spatial != SpatialFilter::None) dump_layer(dump, kFiltered, name, -1, s.spatial_result());
+  // 2'. a-eaw: the (adaptive) temporal EMA of the spatial filter's output, with its own history, as A-SVGF puts
+  //     its adaptive temporal filter after a per-frame denoiser (A-RAE) [ASVGF18 Sec. 4, Fig. 6] [ASVGF18 Eq. 1].
+  s.ema_enabled = options_.ema_after_spatial;
+  if (s.ema_enabled) {
+    s.seen_ema_history = std::move(s.ema_history);
+    time_pass("ema", [&] {
+      s.ema = temporal_pass(s.spatial_result(), surface_, s.seen_ema_history, p, adaptive ? &*adaptive : nullptr);
+    });
+    dump_layer(dump, kEma, name, -1, s.ema.color);
+    s.ema_history = {s.ema.color, s.ema.moment1, s.ema.moment2, s.ema.length, surface_};
+  }
 
   // 3. What the next frame reads: the colour history, the moments, the history length, this G-buffer.
   const RgbPlane& history = history_level < 0 ? s.temporal.color
@@ -224,6 +237,7 @@ std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
   if (options.spatial == SpatialFilter::Atrous)
     for (const char* name : {"variance", "prefilter", "atrous"}) passes.push_back(&find_pass(name));
   if (options.spatial == SpatialFilter::Eaw) passes.push_back(&find_pass("eaw"));
+  if (options.ema_after_spatial) passes.push_back(&find_pass("ema"));
   passes.push_back(&find_pass("modulate"));
   passes.push_back(&find_pass("tonemap"));
   if (options.taa) passes.push_back(&find_pass("taa"));
@@ -289,6 +303,8 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
   const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
   if (pass == "temporal")
     temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);
+  if (pass == "ema")
+    temporal_pixel(s.spatial_result(), surface_, s.seen_ema_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);
   if (pass == "variance") variance_pixel(s.temporal, surface_, p, x, y, &probe);
   if (pass == "prefilter") prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
   if (pass == "atrous")

@@ -3,6 +3,7 @@
 //   temporal accumulation (temporal.h) -> variance estimate (variance.h) -> a-trous levels (atrous.h),
 //   the level `history_level` becoming next frame's colour history;
 // then remodulation and recombination (modulate.h), tone mapping (tonemap.h) and TAA (filters/taa/taa.h).
+// With `ema_after_spatial` (a-eaw) a temporal EMA follows the spatial filter instead of preceding it.
 // With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first turns the frame's gradient samples into a per-pixel
 // alpha: gradient image (filters/asvgf/gradient_image.h) -> reconstruction iterations (gradient_atrous.h) ->
 // lambda and alpha_i (adaptive_alpha.h), which the temporal accumulation uses in place of the constant alpha.
@@ -36,6 +37,9 @@ struct SvgfOptions {
   SpatialFilter spatial = SpatialFilter::Atrous;
   bool taa = true;                             // temporal antialiasing after tone mapping
   bool adaptive = false;                       // A-SVGF's adaptive alpha from gradient samples [ASVGF18 Sec. 3.5]
+  // A temporal EMA of the spatial filter's output, after it (A-RAE's arrangement [ASVGF18 Sec. 4, Fig. 6]), with
+  // the adaptive alpha when `adaptive`.
+  bool ema_after_spatial = false;
   SvgfParams svgf;
   AsvgfParams asvgf;
   EawParams eaw;
@@ -72,6 +76,9 @@ class SvgfFilter : public Method {
     GradientImage gradient;           // A-SVGF: the gradient image
     std::vector<GradientValues> gradient_levels;  // each reconstruction iteration's output
     AdaptiveAlpha adaptive;           // lambda and alpha_i
+    TemporalHistory ema_history, seen_ema_history;  // ema_after_spatial: the EMA's history, and what it read
+    TemporalOutput ema;               // and its output
+    bool ema_enabled = false;
     TemporalHistory seen_history;     // the history the temporal pass read this frame
     TemporalOutput temporal;          // its output
     FloatPlane variance;              // the variance estimate
@@ -80,7 +87,8 @@ class SvgfFilter : public Method {
     // The input of level i is the output of level i - 1; level 0 reads the temporal output.
     const RgbPlane& level_input_color(int level) const;
     const FloatPlane& level_input_variance(int level) const;
-    const RgbPlane& filtered() const;  // the stream's result: the last level's output
+    const RgbPlane& spatial_result() const;  // the last level's output (the temporal output without levels)
+    const RgbPlane& filtered() const;        // the stream's result: the EMA's output, else spatial_result()
   };
 
   // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.

@@ -24,8 +24,8 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
 }
 
 std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
-  if (spec.backend == "cpu") return make_method(spec.name, spec.svgf);
-  const SvgfOptions options = method_options(spec.name, spec.svgf);  // checks the method's name first
+  if (spec.backend == "cpu") return make_method(spec.name, spec_params(spec));
+  const SvgfOptions options = method_options(spec.name, spec_params(spec));  // checks the method's name first
   std::unique_ptr<VulkanContext>& context = contexts_[spec.illumination];
   if (!context) {
     VulkanOptions vulkan;  // "" leaves the records Auto

@@ -31,7 +31,7 @@ std::vector<std::string> split(const std::string& text, char sep) {
 std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& spec) {
   if (c.make_method) return c.make_method(spec);
   if (spec.backend != "cpu") throw Error("method spec '" + spec.text + "': this caller runs backend=cpu only");
-  return make_method(spec.name, spec.svgf);
+  return make_method(spec.name, spec_params(spec));
 }
 
 // One method over the whole sequence: a row of metrics per frame.
@@ -76,7 +76,9 @@ MethodSpec parse_method_spec(const std::string& text) {
   MethodSpec spec;
   spec.text = text;
   spec.name = parts[0];
-  spec.svgf = method_defaults(spec.name).svgf;  // throws for an unknown name, listing the known ones
+  const MethodParams defaults = method_defaults(spec.name);  // throws for an unknown name, listing the known ones
+  spec.svgf = defaults.svgf;
+  spec.asvgf = defaults.asvgf;
   for (size_t i = 1; i < parts.size(); ++i) {
     const size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq), value_text = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
@@ -89,16 +91,24 @@ MethodSpec parse_method_spec(const std::string& text) {
       if (value_text != "fp32" && value_text != "fp16")
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
-    } else if (eq == std::string::npos || !parse_double(value_text, value) || !set_param(spec.svgf, key, value)) {
+    } else if (eq == std::string::npos || !parse_double(value_text, value) ||
+               !(set_param(spec.svgf, key, value) || set_param(spec.asvgf, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
-                  "' is not parameter=value of svgf_params.h, backend=cpu|vulkan or illumination=fp32|fp16");
+                  "' is not parameter=value of svgf_params.h or asvgf_params.h, backend=cpu|vulkan or illumination=fp32|fp16");
     }
     spec.params += (spec.params.empty() ? "" : ":") + parts[i];
   }
   if (!spec.illumination.empty() && spec.backend != "vulkan")
     throw Error("method spec '" + text + "': illumination=" + spec.illumination + " needs backend=vulkan");
   validate(spec.svgf);
+  validate(spec.asvgf);
   return spec;
+}
+
+MethodParams spec_params(const MethodSpec& spec) {
+  MethodParams params(spec.svgf);
+  params.asvgf = spec.asvgf;
+  return params;
 }
 
 std::vector<std::string> standard_sweep() {

@@ -11,7 +11,7 @@
 //                     of the Vulkan ports; the ports' "transfer" (the host packing and unpacking planes) has its
 //                     own column and is not in ms_total, as in rtdr bench
 // A method is named by a spec "name[:param=value[:param=value...]]", e.g. "svgf:atrous_levels=3", where the
-// parameters are rows of filters/svgf/svgf_params.h; adding a method is a line in filters/method.cpp. Two more
+// parameters are rows of filters/svgf/svgf_params.h or filters/asvgf/asvgf_params.h; adding a method is a line in filters/method.cpp. Two more
 // keys choose where it runs: backend=cpu (the golden passes, the default) or backend=vulkan (the shader ports,
 // svgf only), and with backend=vulkan, illumination=fp32 or fp16 (the ports' illumination records,
 // gpu/vulkan_context.h; without it, $RTDR_VK_ILLUMINATION or the device's default).
@@ -35,13 +35,16 @@ struct MethodSpec {
   std::string text;    // as given, e.g. "svgf:alpha=0.1"
   std::string name;    // "svgf"
   std::string params;  // "alpha=0.1" ("" for the defaults); backend and illumination included
-  SvgfParams svgf;
+  SvgfParams svgf;    // from the method's defaults (filters/method.h), then the spec's keys
+  AsvgfParams asvgf;  // likewise; keys of both tables are accepted
   std::string backend = "cpu";  // "cpu" or "vulkan"
   std::string illumination;     // backend=vulkan: "fp32", "fp16", or "" for the context's default
 };
 // Throws rtdr::Error for an unknown method or parameter, a value outside its range, an unknown back end or
 // illumination records, or illumination without backend=vulkan.
 MethodSpec parse_method_spec(const std::string& text);
+// The parameter tables a spec's method is made with.
+MethodParams spec_params(const MethodSpec& spec);
 // The parameter sweeps of the speed-versus-accuracy chart: a-trous levels 1 to 5, alpha in {0.05, 0.1,
 // 0.2, 0.5}, and the 3x3 kernel (the 5x5 is the default).
 std::vector<std::string> standard_sweep();

@@ -72,6 +72,15 @@ TEST_CASE("method specs: parameters, back end and illumination records, each che
   CHECK(port.params == "backend=vulkan:illumination=fp16:kernel_size=3");  // the CSV tells the rows apart
   CHECK(rtdr::parse_method_spec("svgf:backend=cpu").backend == "cpu");
 
+  // A method's own defaults first, then the keys of either table (svgf_params.h, asvgf_params.h).
+  const rtdr::MethodSpec asvgf = rtdr::parse_method_spec("asvgf:gradient_levels=3:alpha=0.3");
+  CHECK(asvgf.asvgf.gradient_levels == 3);
+  CHECK(asvgf.svgf.alpha == 0.3f);
+  CHECK(asvgf.svgf.alpha_moments == 0.1f);  // asvgf's default, not svgf's 0.2
+  CHECK(asvgf.svgf.kernel_size == 3);
+  CHECK(rtdr::spec_params(asvgf).asvgf.gradient_levels == 3);
+  CHECK_THROWS_WITH(rtdr::parse_method_spec("asvgf:gradient_levels=11"), Catch::Contains("gradient_levels"));
+
   for (const char* bad : {"svgf:backend=metal", "svgf:backend=", "svgf:backend", "svgf:illumination=fp16",
                           "svgf:backend=cpu:illumination=fp32", "svgf:backend=vulkan:illumination=fp8",
                           "svgf:sigma_q=1", "svgf:atrous_levels=11", "nothing:backend=vulkan"}) {

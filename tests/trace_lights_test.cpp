@@ -90,6 +90,20 @@ float u_select_of_light(size_t l) {
   return float(before + 0.5 * kPmf[l]);
 }
 
+// A "flickering" lamp (instance 0) whose strength track goes 4 -> 0 -> 4 over t = 0, 1, 2 (linear), and a steady
+// lamp (instance 1) of strength 1, both unit quads with emissive factor (1, 1, 1), at x = 0 and x = 3.
+rtdr::Scene flickering_and_steady_lamps() {
+  rtdr::Scene scene = rtdr::test::camera_scene();
+  rtdr::Material flicker = emitter({1.0f, 1.0f, 1.0f}, 1.0f);
+  flicker.emissive_strength_track.times = {0.0f, 1.0f, 2.0f};
+  flicker.emissive_strength_track.values = {4.0f, 0.0f, 4.0f};
+  const int flicker_material = rtdr::test::add_material(scene, flicker);
+  const int steady_material = rtdr::test::add_material(scene, emitter({1.0f, 1.0f, 1.0f}, 1.0f));
+  rtdr::test::add_quad(scene, 1.0f, glm::vec3(0.0f, 2.0f, 0.0f), about_x(90.0f), flicker_material);
+  rtdr::test::add_quad(scene, 1.0f, glm::vec3(3.0f, 2.0f, 0.0f), about_x(90.0f), steady_material);
+  return scene;
+}
+
 }  // namespace
 
 TEST_CASE("LightSet holds exactly the emissive triangles, in world space at the pose") {
@@ -231,16 +245,7 @@ TEST_CASE("LightSet::find maps (instance, triangle) to the light, and anything e
 }
 
 TEST_CASE("LightSet follows an animated emissive strength") {
-  // A "flickering" lamp (instance 0) whose strength track goes 4 -> 0 -> 4 over t = 0, 1, 2 (linear), and
-  // a steady lamp (instance 1) of strength 1, both with emissive factor (1, 1, 1).
-  rtdr::Scene scene = rtdr::test::camera_scene();
-  rtdr::Material flicker = emitter({1.0f, 1.0f, 1.0f}, 1.0f);
-  flicker.emissive_strength_track.times = {0.0f, 1.0f, 2.0f};
-  flicker.emissive_strength_track.values = {4.0f, 0.0f, 4.0f};
-  const int flicker_material = rtdr::test::add_material(scene, flicker);
-  const int steady_material = rtdr::test::add_material(scene, emitter({1.0f, 1.0f, 1.0f}, 1.0f));
-  rtdr::test::add_quad(scene, 1.0f, glm::vec3(0.0f, 2.0f, 0.0f), about_x(90.0f), flicker_material);
-  rtdr::test::add_quad(scene, 1.0f, glm::vec3(3.0f, 2.0f, 0.0f), about_x(90.0f), steady_material);
+  rtdr::Scene scene = flickering_and_steady_lamps();
 
   SECTION("at t = 0.5 the track is half way from 4 to 0: Le = 2, and the flickering lamp is a light") {
     const rtdr::LightSet lights(scene, scene.pose(0.5));
@@ -268,16 +273,9 @@ TEST_CASE("LightSet follows an animated emissive strength") {
 }
 
 TEST_CASE("LightSet with a choice pose chooses by that pose's powers and shades with this pose's radiance") {
-  // The flickering lamp of the test above (4 -> 0 -> 4 over t = 0, 1, 2) and the steady lamp (1); the
-  // flickering one also moves 1 m along x from t = 0 to 1, so its geometry comes from the shaded pose.
-  rtdr::Scene scene = rtdr::test::camera_scene();
-  rtdr::Material flicker = emitter({1.0f, 1.0f, 1.0f}, 1.0f);
-  flicker.emissive_strength_track.times = {0.0f, 1.0f, 2.0f};
-  flicker.emissive_strength_track.values = {4.0f, 0.0f, 4.0f};
-  const int flicker_material = rtdr::test::add_material(scene, flicker);
-  const int steady_material = rtdr::test::add_material(scene, emitter({1.0f, 1.0f, 1.0f}, 1.0f));
-  rtdr::test::add_quad(scene, 1.0f, glm::vec3(0.0f, 2.0f, 0.0f), about_x(90.0f), flicker_material);
-  rtdr::test::add_quad(scene, 1.0f, glm::vec3(3.0f, 2.0f, 0.0f), about_x(90.0f), steady_material);
+  // flickering_and_steady_lamps(), with the flickering lamp also moving 1 m along x from t = 0 to 1, so that its
+  // geometry comes from the shaded pose.
+  rtdr::Scene scene = flickering_and_steady_lamps();
   rtdr::Node& lamp = scene.nodes[size_t(scene.instances[0].node)];
   lamp.translation_track.times = {0.0f, 1.0f};
   lamp.translation_track.values = {glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(1.0f, 2.0f, 0.0f)};

@@ -1,4 +1,5 @@
-// The A-SVGF parameter table's expansions. See asvgf_params.h.
+// The expansions of A-SVGF's parameter table (asvgf_params.h): five reconstruction iterations [ASVGF18 Sec. 3.4], the
+// maximum over 3x3 strata [ASVGF18 Sec. 3.5], the history-length rule [ASVGF18 Sec. 4].
 #include "filters/asvgf/asvgf_params.h"
 
 namespace rtdr {

@@ -1,4 +1,4 @@
-// Every A-SVGF tunable of the filter side, declared once (filters/params.h explains the X-macro). The rest of
+// Every A-SVGF tunable of the filter side [ASVGF18 Sec. 3.4, 3.5], declared once (filters/params.h explains the X-macro). The rest of
 // A-SVGF's parameters are SVGF's (svgf_params.h): the edge-stopping sigmas and epsilon of the reconstruction
 // [ASVGF18 Sec. 3.4: "chosen as for SVGF"], alpha (0.1 for asvgf [ASVGF18 Sec. 5]) and the 3x3 box a-trous
 // [ASVGF18 Sec. 4]. The stratum size is the render's (trace/gradients.h), read from the frame's header.

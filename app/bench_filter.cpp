@@ -71,8 +71,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     const int warmup = std::max(5, o.warmup);
     std::vector<Frame> frames;
     // With gradient samples (trace/gradients.h) when the method reads them (asvgf), each frame from the one before.
-    const std::vector<std::string> uints = make_method(o.method, o.params)->inputs().uints;
-    const bool gradients = std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
+    const bool gradients = make_method(o.method, o.params)->reads_gradient_samples();
     for (int f = 0; f < warmup + o.runs; ++f)
       frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, {}, {},
                                                                frames.empty() ? nullptr : &frames.back())

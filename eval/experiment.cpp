@@ -10,7 +10,6 @@
 #include "filters/svgf/tonemap.h"
 #include "scenes/gltf_loader.h"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -164,10 +163,7 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   const TonemapParams tonemap_params;
   // With gradient samples when asked, or when a method reads them (asvgf): then every method gets the same input.
   bool gradients = c.gradients;
-  for (const std::unique_ptr<Method>& m : methods) {
-    const std::vector<std::string> uints = m->inputs().uints;
-    gradients = gradients || std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
-  }
+  for (const std::unique_ptr<Method>& m : methods) gradients = gradients || m->reads_gradient_samples();
   if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
     if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));

@@ -85,14 +85,15 @@ std::vector<Frame> FrameCache::gradient_frames(int first, int last, int width, i
   std::vector<Frame> frames;
   std::optional<Frame> prev;  // frame f - 1, once known
   for (int f = first; f <= last; ++f) {
-    if (!cached(f) && !prev && f > 0) {
+    const bool hit = cached(f);
+    if (!hit && !prev && f > 0) {
       // Frame f needs f - 1: go back to the latest cached frame (or to the start) and render forward.
       int from = f - 1;
       while (from >= 0 && !cached(from)) --from;
       if (from >= 0) prev = read_exr(file(from));
       for (int g = from + 1; g < f; ++g) prev = render(g, prev ? &*prev : nullptr);
     }
-    frames.push_back(cached(f) ? read_exr(file(f)) : render(f, prev ? &*prev : nullptr));
+    frames.push_back(hit ? read_exr(file(f)) : render(f, prev ? &*prev : nullptr));
     prev = frames.back();
   }
   return frames;

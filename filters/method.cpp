@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "filters/svgf/svgf.h"
 
+#include <algorithm>
 #include <functional>
 
 namespace rtdr {
@@ -62,6 +63,11 @@ double total_ms(const PassTimes& times) {
   for (const auto& [pass, ms] : times)
     if (pass != kTransferPass) total += ms;
   return total;
+}
+
+bool Method::reads_gradient_samples() const {
+  const std::vector<std::string> uints = inputs().uints;
+  return std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
 }
 
 std::vector<std::string> method_names() {

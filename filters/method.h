@@ -58,6 +58,8 @@ class Method {
   // Every channel filter() adds to `dump`: the dump layers of the passes it runs (filters/passes.h).
   virtual std::vector<std::string> dump_channels() const = 0;
   const PassTimes& pass_times() const { return times_; }
+  // Whether its input must carry A-SVGF's gradient samples (it reads gradient.source, trace/gradients.h).
+  bool reads_gradient_samples() const;
 
  protected:
   PassTimes times_;

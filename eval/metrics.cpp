@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -21,6 +22,12 @@ void check_same_size(const RgbPlane& test, const RgbPlane& reference, const char
     throw Error(std::string(metric) + ": images must be non-empty and of equal size (test " + std::to_string(test.width) +
                 "x" + std::to_string(test.height) + ", reference " + std::to_string(reference.width) + "x" +
                 std::to_string(reference.height) + ")");
+}
+
+void check_region(const RgbPlane& image, const Region& region, const char* metric) {
+  if (region.size() != image.data.size())
+    throw Error(std::string(metric) + ": the region has " + std::to_string(region.size()) + " pixels, the image " +
+                std::to_string(image.data.size()));
 }
 
 // Sum of per-row partial sums in row order: the same result for any thread count.
@@ -387,14 +394,58 @@ int lag_frames_relative(const std::vector<double>& error, int change_frame, doub
 }
 
 double brightness_error(const RgbPlane& test, const RgbPlane& reference) {
-  if (test.width != reference.width || test.height != reference.height)
-    throw Error("brightness_error: images of different sizes");
+  return std::abs(brightness_bias(test, reference, Region(test.data.size(), 1)));
+}
+
+double rmse(const RgbPlane& test, const RgbPlane& reference, const Region& region) {
+  check_same_size(test, reference, "rmse");
+  check_region(test, region, "rmse");
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < test.data.size(); ++i) {
+    if (!region[i]) continue;
+    const glm::dvec3 d = glm::dvec3(test.data[i]) - glm::dvec3(reference.data[i]);
+    sum += glm::dot(d, d);
+    ++count;
+  }
+  return count ? std::sqrt(sum / (3.0 * double(count))) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double brightness_bias(const RgbPlane& test, const RgbPlane& reference, const Region& region) {
+  check_same_size(test, reference, "brightness_error");
+  check_region(test, region, "brightness_error");
   double sum_test = 0.0, sum_reference = 0.0;
   for (size_t i = 0; i < test.data.size(); ++i) {
+    if (!region[i]) continue;
     sum_test += luminance(test.data[i]);
     sum_reference += luminance(reference.data[i]);
   }
-  return sum_reference > 0.0 ? std::abs(sum_test - sum_reference) / sum_reference : 0.0;
+  return sum_reference > 0.0 ? (sum_test - sum_reference) / sum_reference : 0.0;
+}
+
+std::vector<Region> umbra_regions(const std::vector<FloatPlane>& direct_luminance,
+                                  const std::vector<FloatPlane>& depth) {
+  if (direct_luminance.size() != depth.size() || depth.empty())
+    throw Error("umbra_regions: needs one direct-light plane and one depth plane per frame, at least one frame");
+  const size_t n = depth.front().data.size();
+  for (size_t f = 0; f < depth.size(); ++f)
+    if (depth[f].width != depth.front().width || depth[f].height != depth.front().height ||
+        direct_luminance[f].width != depth.front().width || direct_luminance[f].height != depth.front().height)
+      throw Error("umbra_regions: frame " + std::to_string(f) + " differs in size from the first");
+  // Per pixel: does it see the same surface in every frame, and the most direct light it ever receives.
+  std::vector<uint8_t> still(n, 1);
+  std::vector<float> most(n, 0.0f);
+  for (size_t f = 0; f < depth.size(); ++f)
+    for (size_t i = 0; i < n; ++i) {
+      const float z0 = depth.front().data[i], z = depth[f].data[i];
+      if (!(z0 > 0.0f) || !(z > 0.0f) || std::abs(z - z0) > 0.01f * z0) still[i] = 0;  // 0: no surface
+      most[i] = std::max(most[i], direct_luminance[f].data[i]);
+    }
+  std::vector<Region> regions(depth.size(), Region(n, 0));
+  for (size_t f = 0; f < depth.size(); ++f)
+    for (size_t i = 0; i < n; ++i)
+      regions[f][i] = still[i] && most[i] > 0.0f && direct_luminance[f].data[i] < kUmbraFraction * most[i];
+  return regions;
 }
 
 }  // namespace rtdr

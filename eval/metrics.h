@@ -83,6 +83,26 @@ double temporal_error(const RgbPlane& current, const RgbPlane& previous);
 // RMSE at 1 spp. 0 when the reference is black.
 double brightness_error(const RgbPlane& test, const RgbPlane& reference);
 
+// A region of an image: one byte per pixel, row-major, nonzero where the pixel belongs to the region.
+using Region = std::vector<uint8_t>;
+// rmse over the region's pixels only; NaN when the region is empty.
+double rmse(const RgbPlane& test, const RgbPlane& reference, const Region& region);
+// The signed brightness error of a region, (sum L(test) - sum L(reference)) / sum L(reference) over its
+// pixels: > 0 too bright, < 0 too dark; 0 when the reference is black there. The image's brightness_error is
+// |brightness_bias| over every pixel, and there a lagging history can hide: too bright where a light left
+// and too dark where it arrived, the two cancel in the image's mean (filters/asvgf/README.md, falling-light).
+double brightness_bias(const RgbPlane& test, const RgbPlane& reference, const Region& region);
+
+// The moving umbrae of a sequence under a still camera, Fig. 5's "umbra" [ASVGF18 Sec. 5.2]: for each frame,
+// the pixels whose reference direct light is below kUmbraFraction of the most that pixel receives in any
+// frame of the sequence. Only pixels that see the same surface throughout count (depth within 1 % of its
+// first frame's, never empty), and only where some frame gives them direct light. Inputs, one plane per frame:
+// the luminance of the reference's demodulated `direct` layer and its `depth.Z`. Under a moving camera hardly
+// a pixel keeps its depth, and the regions are empty.
+inline constexpr double kUmbraFraction = 0.1;
+std::vector<Region> umbra_regions(const std::vector<FloatPlane>& direct_luminance,
+                                  const std::vector<FloatPlane>& depth);
+
 // Lag of a per-frame error series after a sudden change at frame `change_frame` (the first frame that shows
 // the change): the number of frames k >= 0 until error[change_frame + k] is at or below `threshold`, so 0
 // means no lag at all. -1 if the series never gets back there.

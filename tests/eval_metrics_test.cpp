@@ -1,6 +1,7 @@
-// Tests of eval/metrics.cpp: RMSE, relMSE, temporal error and lag by hand; SSIM exact on identical and
-// constant images and against scikit-image on stored pairs (tests/data/ssim/, eval/make_ssim_fixtures.py);
-// FLIP on closed forms (uniform images, where only the colour pipeline acts) and properties.
+// Tests of eval/metrics.cpp: RMSE (whole and over a region), relMSE, brightness, umbrae, temporal error and lag
+// by hand; SSIM exact on identical and constant images and against scikit-image on stored pairs
+// (tests/data/ssim/, eval/make_ssim_fixtures.py); FLIP on closed forms (uniform images, where only the colour
+// pipeline acts) and properties.
 #include "eval/metrics.h"
 
 #include "core/error.h"
@@ -54,6 +55,53 @@ TEST_CASE("RMSE by hand: sqrt of the mean squared difference over pixels and cha
   CHECK(rmse(test, reference) == Approx(std::sqrt(1.5)).epsilon(1e-12));
   CHECK(rmse(test, test) == 0.0);
   CHECK_THROWS_AS(rmse(test, RgbPlane(1, 2)), Error);
+}
+
+TEST_CASE("brightness by hand: the image's error is |bias| of its mean luminance, a region's bias keeps its sign") {
+  // Luminances: test 1, 0.5, 2; reference 1, 1, 1 (grey pixels: luminance = the grey value).
+  const RgbPlane test = image(3, 1, {glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(2.0f)});
+  const RgbPlane reference = image(3, 1, {glm::vec3(1.0f), glm::vec3(1.0f), glm::vec3(1.0f)});
+  CHECK(brightness_error(test, reference) == Approx(0.5 / 3.0).epsilon(1e-12));  // |3.5 - 3| / 3
+  CHECK(brightness_bias(test, reference, {1, 1, 1}) == Approx(0.5 / 3.0).epsilon(1e-12));
+  // Too dark in one region, too bright in the other; together they nearly cancel.
+  CHECK(brightness_bias(test, reference, {0, 1, 0}) == Approx(-0.5).epsilon(1e-12));
+  CHECK(brightness_bias(test, reference, {0, 0, 1}) == Approx(1.0).epsilon(1e-12));
+  CHECK(brightness_bias(test, reference, {0, 0, 0}) == 0.0);  // an empty region: no light to compare
+  CHECK_THROWS_AS(brightness_bias(test, reference, {1, 1}), Error);
+}
+
+TEST_CASE("RMSE over a region by hand: only its pixels count, NaN for an empty region") {
+  const RgbPlane test = image(2, 1, {{1, 2, 3}, {0, 0, 0}});
+  const RgbPlane reference = image(2, 1, {{1, 1, 1}, {0, 0, 2}});
+  CHECK(rmse(test, reference, {1, 0}) == Approx(std::sqrt(5.0 / 3.0)).epsilon(1e-12));  // (0 + 1 + 4) / 3
+  CHECK(rmse(test, reference, {0, 1}) == Approx(std::sqrt(4.0 / 3.0)).epsilon(1e-12));
+  CHECK(rmse(test, reference, {1, 1}) == Approx(rmse(test, reference)).epsilon(1e-12));
+  CHECK(std::isnan(rmse(test, reference, {0, 0})));
+  CHECK_THROWS_AS(rmse(test, reference, {1}), Error);
+}
+
+TEST_CASE("umbrae by hand: below a tenth of the pixel's most direct light, on surfaces that stay put") {
+  // Four pixels over three frames. Pixel 0: lit, then in shadow, then lit. Pixel 1: in a penumbra, never below a
+  // tenth. Pixel 2: in shadow at frame 1, but its surface moves (depth 2 -> 3). Pixel 3: never lit.
+  auto plane = [](std::vector<float> v) {
+    FloatPlane p(4, 1);
+    p.data = std::move(v);
+    return p;
+  };
+  const std::vector<FloatPlane> direct = {plane({1.0f, 1.0f, 1.0f, 0.0f}), plane({0.05f, 0.5f, 0.0f, 0.0f}),
+                                          plane({0.8f, 0.2f, 1.0f, 0.0f})};
+  const std::vector<FloatPlane> depth = {plane({2.0f, 2.0f, 2.0f, 2.0f}), plane({2.01f, 2.0f, 3.0f, 2.0f}),
+                                         plane({2.0f, 2.0f, 2.0f, 2.0f})};
+  const std::vector<Region> umbrae = umbra_regions(direct, depth);
+  REQUIRE(umbrae.size() == 3);
+  CHECK(umbrae[0] == Region{0, 0, 0, 0});
+  CHECK(umbrae[1] == Region{1, 0, 0, 0});  // 0.05 < 0.1 x 1; depth 2.01 is within 1 %
+  CHECK(umbrae[2] == Region{0, 0, 0, 0});
+  // A pixel that sees no surface in some frame (depth 0) never counts: pixel 0 drops out. Pixel 2, now still,
+  // is in its umbra at frame 1.
+  const std::vector<FloatPlane> gone = {depth[0], plane({0.0f, 2.0f, 2.0f, 2.0f}), depth[2]};
+  CHECK(umbra_regions(direct, gone)[1] == Region{0, 0, 1, 0});
+  CHECK_THROWS_AS(umbra_regions(direct, {depth[0]}), Error);
 }
 
 TEST_CASE("relMSE by hand: mean of (x - y)^2 / (y^2 + eps), eps = 0.01") {

@@ -34,9 +34,7 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
     const double gradient_ms = median_ms(o.warmup, o.runs, [&] {
       frame = render_frame_with_gradients(scene, f, size.width, size.height, settings, o.gradient, &prev);
     });
-    size_t gradients = 0;
-    for (const uint32_t s : frame.uint_channel("gradient.source").data) gradients += s != kInvalidId;
-    const double share = double(gradients) / (double(size.width) * double(size.height));
+    const double share = gradient_sample_share(frame);
     const double ratio = gradient_ms / plain_ms;
     std::printf("%-14s %4dx%-4d %10.1f %14.1f %7.3f %9.2f%%\n", name.c_str(), size.width, size.height, plain_ms,
                 gradient_ms, ratio, 100.0 * share);

@@ -42,7 +42,7 @@ std::vector<MethodSpec> method_specs(const EvalOptions& o) {
       if (!m.empty()) texts.push_back(m);
   }
   if (o.sweep)
-    for (const std::string& s : standard_sweep()) texts.push_back(s);
+    for (const std::string& s : standard_sweep(texts)) texts.push_back(s);
   std::vector<MethodSpec> specs;
   for (const std::string& t : texts) specs.push_back(parse_method_spec(t));
   return specs;
@@ -114,9 +114,11 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--scene", o->scene, "shipped scene name or .gltf path")->capture_default_str();
   sub->add_option("--methods", o->methods,
                   "comma-separated method specs (name[:param=value...]) or all; backend=vulkan runs svgf on the "
-                  "shader ports, illumination=fp16 with half records (eval/README.md)")
+                  "shader ports, illumination=fp16 with half records; gradient_<row> gives a method its own gradient "
+                  "input, e.g. asvgf:gradient_stratum_size=2 (eval/README.md)")
       ->capture_default_str();
-  sub->add_flag("--sweep", o->sweep, "add the parameter sweeps: a-trous levels, alpha, the 3x3 kernel");
+  sub->add_flag("--sweep", o->sweep,
+                "add the parameter sweeps: svgf's a-trous levels, alpha and 3x3 kernel; with asvgf, 2x2 and 4x4 strata");
   sub->add_option("--frames", o->frames, frames_help(""))->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--ref-spp", o->ref_spp, "samples per pixel of the reference frames")

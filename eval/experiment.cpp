@@ -2,6 +2,7 @@
 #include "eval/experiment.h"
 
 #include "core/atomic_file.h"
+#include "core/color.h"
 #include "core/error.h"
 #include "eval/frame_cache.h"
 #include "eval/metrics.h"
@@ -10,9 +11,11 @@
 #include "filters/svgf/tonemap.h"
 #include "scenes/gltf_loader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -26,6 +29,13 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return parts;
 }
 
+// The Rec. 709 luminance of every pixel (core/color.h).
+FloatPlane luminance_plane(const RgbPlane& rgb) {
+  FloatPlane l(rgb.width, rgb.height);
+  for (size_t i = 0; i < l.data.size(); ++i) l.data[i] = luminance(rgb.data[i]);
+  return l;
+}
+
 // The method a spec names, on its back end.
 std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& spec) {
   if (c.make_method) return c.make_method(spec);
@@ -36,7 +46,8 @@ std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& 
 // One method over the whole sequence: a row of metrics per frame.
 void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<Frame>& inputs,
                      const std::vector<RgbPlane>& ref_colour, const std::vector<RgbPlane>& ref_display,
-                     const EvalConfig& c, EvalResult& result, const std::function<void()>& tick) {
+                     const std::vector<Region>& umbrae, const EvalConfig& c, EvalResult& result,
+                     const std::function<void()>& tick) {
   RgbPlane previous_display;
   for (size_t k = 0; k < inputs.size(); ++k) {
     const Frame out = method.filter(inputs[k]);
@@ -50,11 +61,14 @@ void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<F
     row.ssim = ssim(display, ref_display[k]);
     row.flip = flip(display, ref_display[k]).mean;
     row.brightness_error = brightness_error(colour, ref_colour[k]);
+    row.umbra_rmse = rmse(colour, ref_colour[k], umbrae[k]);
+    row.gradient_share = gradient_sample_share(inputs[k]);
     row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
     row.ms = method.pass_times();
     row.ms_total = total_ms(row.ms);  // without the host's transfer, as rtdr bench
     result.rows.push_back(row);
     previous_display = display;
+    if (c.observe) c.observe(spec, row.frame, out, ref_colour[k]);
     if (k + 1 == inputs.size() && spec.params.empty()) result.last_frame.push_back({spec.text, display});
     tick();
   }
@@ -65,6 +79,17 @@ bool parse_double(const std::string& text, double& value) {
   const char* end = text.data() + text.size();
   const auto [stop, ec] = std::from_chars(text.data(), end, value);
   return ec == std::errc() && stop == end;
+}
+
+// A gradient_<row> key (trace/gradients.h's table): checked against the row's range and kept for the method's
+// own input. False for any other key.
+bool set_gradient_row(MethodSpec& spec, const std::string& key, double value) {
+  const std::string prefix = "gradient_";
+  if (key.rfind(prefix, 0) != 0) return false;
+  GradientParams check;
+  if (!set_param(check, key.substr(prefix.size()), value)) return false;
+  spec.gradient_rows.push_back({key.substr(prefix.size()), value});
+  return true;
 }
 
 }  // namespace
@@ -91,9 +116,11 @@ MethodSpec parse_method_spec(const std::string& text) {
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
-               !(set_param(spec.svgf, key, value) || set_param(spec.asvgf, key, value))) {
+               !(set_param(spec.svgf, key, value) || set_param(spec.asvgf, key, value) ||
+                 set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
-                  "' is not parameter=value of svgf_params.h or asvgf_params.h, backend=cpu|vulkan or illumination=fp32|fp16");
+                  "' is not parameter=value of svgf_params.h, asvgf_params.h or gradient_<row> of trace/gradients.h, "
+                  "backend=cpu|vulkan or illumination=fp32|fp16");
     }
     spec.params += (spec.params.empty() ? "" : ":") + parts[i];
   }
@@ -110,12 +137,21 @@ MethodParams spec_params(const MethodSpec& spec) {
   return params;
 }
 
-std::vector<std::string> standard_sweep() {
+GradientParams spec_gradient(const MethodSpec& spec, const GradientParams& run) {
+  GradientParams params = run;
+  for (const auto& [row, value] : spec.gradient_rows) set_param(params, row, value);
+  return params;
+}
+
+std::vector<std::string> standard_sweep(const std::vector<std::string>& methods) {
   std::vector<std::string> specs;
   for (int levels = 1; levels <= 4; ++levels) specs.push_back("svgf:atrous_levels=" + std::to_string(levels));
   for (const char* alpha : {"0.05", "0.1", "0.5"}) specs.push_back(std::string("svgf:alpha=") + alpha + ":alpha_moments=" + alpha);
-  specs.push_back("svgf:kernel_size=3");
-  return specs;  // plus "svgf" itself: 5 levels, alpha 0.2, the 5x5 kernel
+  specs.push_back("svgf:kernel_size=3");  // plus "svgf" itself: 5 levels, alpha 0.2, the 5x5 kernel
+  // [ASVGF18 Fig. 5]: the stratum size, plus "asvgf" itself on 3x3 strata.
+  if (std::find(methods.begin(), methods.end(), "asvgf") != methods.end())
+    for (const char* s : {"2", "4"}) specs.push_back(std::string("asvgf:gradient_stratum_size=") + s);
+  return specs;
 }
 
 // [SVGF17 Sec. 3]: remodulated exactly as the methods remodulate their filtered illumination.
@@ -160,23 +196,40 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   // Inputs (1 spp, the seed's noise) and references (ref_spp samples of the same estimator, another seed).
   std::vector<Frame> inputs;
   std::vector<RgbPlane> ref_colour, ref_display;
+  std::vector<FloatPlane> ref_direct, ref_depth;  // for the umbrae
   const TonemapParams tonemap_params;
-  // With gradient samples when asked, or when a method reads them (asvgf): then every method gets the same input.
+  // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
+  // every method without rows of its own gets the same input.
   bool gradients = c.gradients;
-  for (const std::unique_ptr<Method>& m : methods) gradients = gradients || m->reads_gradient_samples();
+  for (size_t m = 0; m < methods.size(); ++m)
+    gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
   if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
     if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
     tick();
-    ref_colour.push_back(frame_colour(cache.get(f, c.width, c.height, reference_settings(c))));
+    const Frame ref = cache.get(f, c.width, c.height, reference_settings(c));
+    ref_colour.push_back(frame_colour(ref));
     ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));
+    ref_direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
+    ref_depth.push_back(ref.float_channel("depth.Z"));
     tick();
+  }
+  const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_depth);
+  // The inputs of specs with gradient rows of their own, one sequence per set of gradient parameters.
+  std::map<std::vector<double>, std::vector<Frame>> own_inputs;
+  for (const MethodSpec& spec : c.methods) {
+    const GradientParams own = spec_gradient(spec, c.gradient);
+    if (!spec.gradient_rows.empty() && param_values(own) != param_values(c.gradient) && !own_inputs.count(param_values(own)))
+      own_inputs[param_values(own)] =
+          cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), own);
   }
 
   EvalResult result;
   result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.back()), tonemap_params)});
   for (size_t m = 0; m < methods.size(); ++m) {
-    evaluate_method(c.methods[m], *methods[m], inputs, ref_colour, ref_display, c, result, tick);
+    const auto own = own_inputs.find(param_values(spec_gradient(c.methods[m], c.gradient)));
+    const std::vector<Frame>& method_inputs = own == own_inputs.end() ? inputs : own->second;
+    evaluate_method(c.methods[m], *methods[m], method_inputs, ref_colour, ref_display, umbrae, c, result, tick);
     methods[m].reset();  // its history's memory
   }
   result.last_frame.push_back({"reference " + std::to_string(c.ref_spp) + " spp", ref_display.back()});
@@ -189,12 +242,13 @@ void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& r
     for (const auto& [pass, ms] : r.ms) passes.insert(pass);
   std::ostringstream csv;
   csv.precision(9);
-  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,brightness_error,ms_total";
+  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,brightness_error,umbra_rmse,gradient_share,ms_total";
   for (const std::string& p : passes) csv << ",ms_" << p;
   csv << '\n';
   for (const MetricsRow& r : rows) {
     csv << r.method << ',' << r.params << ',' << r.frame << ',' << r.rmse << ',' << r.relmse << ',' << r.ssim << ','
-        << r.flip << ',' << r.temporal_error << ',' << r.brightness_error << ',' << r.ms_total;
+        << r.flip << ',' << r.temporal_error << ',' << r.brightness_error << ',' << r.umbra_rmse << ','
+        << r.gradient_share << ',' << r.ms_total;
     for (const std::string& p : passes) {
       csv << ',';
       if (r.ms.count(p)) csv << r.ms.at(p);

@@ -7,6 +7,9 @@
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
 //   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
+//   umbra_rmse       rmse over the moving umbrae only, Fig. 5's umbra (eval/metrics.h umbra_regions; NaN
+//                    where a frame has none, as under a moving camera)
+//   gradient_share   the share of the input's pixels that are gradient samples (0 without them)
 //   ms_total, ms_<pass>  time of the method's passes on this frame: wall time of the golden passes, device time
 //                     of the Vulkan ports; the ports' "transfer" (the host packing and unpacking planes) has its
 //                     own column and is not in ms_total, as in rtdr bench
@@ -15,6 +18,9 @@
 // keys choose where it runs: backend=cpu (the golden passes, the default) or backend=vulkan (the shader ports,
 // svgf only), and with backend=vulkan, illumination=fp32 or fp16 (the ports' illumination records,
 // gpu/vulkan_context.h; without it, $RTDR_VK_ILLUMINATION or the device's default).
+// Keys gradient_<row> set a row of trace/gradients.h's table for this method's input alone, e.g.
+// "asvgf:gradient_stratum_size=2": the method runs on frames with gradient samples made with the run's gradient
+// parameters and these rows changed (Fig. 5's stratum study), while the other methods keep the run's input.
 #pragma once
 
 #include "filters/image.h"
@@ -39,15 +45,21 @@ struct MethodSpec {
   AsvgfParams asvgf;  // likewise; keys of both tables are accepted
   std::string backend = "cpu";  // "cpu" or "vulkan"
   std::string illumination;     // backend=vulkan: "fp32", "fp16", or "" for the context's default
+  // The gradient_<row> keys, row name without the prefix, in the order given: this method's own input.
+  std::vector<std::pair<std::string, double>> gradient_rows;
 };
 // Throws rtdr::Error for an unknown method or parameter, a value outside its range, an unknown back end or
 // illumination records, or illumination without backend=vulkan.
 MethodSpec parse_method_spec(const std::string& text);
 // The parameter tables a spec's method is made with.
 MethodParams spec_params(const MethodSpec& spec);
-// The parameter sweeps of the speed-versus-accuracy chart: a-trous levels 1 to 5, alpha in {0.05, 0.1,
-// 0.2, 0.5}, and the 3x3 kernel (the 5x5 is the default).
-std::vector<std::string> standard_sweep();
+// The gradient input a spec's method runs on: `run` (the run's gradient parameters) with the spec's
+// gradient_<row> keys applied.
+GradientParams spec_gradient(const MethodSpec& spec, const GradientParams& run);
+// The parameter sweeps of the speed-versus-accuracy chart: svgf's a-trous levels 1 to 5, alpha in {0.05, 0.1,
+// 0.2, 0.5}, and the 3x3 kernel (the 5x5 is the default); and when `methods` names asvgf, Fig. 5's stratum study,
+// asvgf on 2x2 and 4x4 strata (3x3 is the default).
+std::vector<std::string> standard_sweep(const std::vector<std::string>& methods);
 
 struct EvalConfig {
   std::string scene;
@@ -59,9 +71,12 @@ struct EvalConfig {
   std::string cache_dir = "out/cache";  // "" disables the cache
   // A-SVGF's input for every method: 1-spp frames with gradient samples (trace/gradients.h), rendered in order
   // from frame 0, as the paper compares methods on "identical 1 spp input". Implied when a method reads
-  // gradient.source (asvgf).
+  // gradient.source (asvgf) or names gradient rows of its own (MethodSpec::gradient_rows).
   bool gradients = false;
   GradientParams gradient;
+  // Called with every filtered frame, in order, for measures of the caller's own (the stability suite's
+  // regions): the method's spec, the frame index, the method's output and the reference's colour.
+  std::function<void(const MethodSpec&, int, const Frame&, const RgbPlane&)> observe;
   // Makes a spec's method. Unset: the golden passes' make_method(spec.name, spec.svgf), and an error for any other
   // back end; rtdr eval sets app/backend.h's SpecMethods, which also makes the Vulkan ports.
   std::function<std::unique_ptr<Method>(const MethodSpec&)> make_method;
@@ -73,6 +88,8 @@ struct MetricsRow {
   double rmse = 0, relmse = 0, ssim = 0, flip = 0;
   double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
   double brightness_error = 0;  // relative error of the mean luminance, linear HDR (eval/metrics.h)
+  double umbra_rmse = 0;        // rmse over the frame's moving umbrae; NaN where it has none
+  double gradient_share = 0;    // the share of the input's pixels that are gradient samples
   double ms_total = 0;
   std::map<std::string, double> ms;  // per pass
 };
@@ -100,7 +117,8 @@ RenderSettings reference_settings(const EvalConfig& config);
 // at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
-// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, ms_total, then one ms_<pass> column per pass
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, umbra_rmse, gradient_share,
+// ms_total, then one ms_<pass> column per pass
 // of any method (empty where a method has no such pass). Written atomically.
 void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
 

@@ -1,18 +1,22 @@
 // Tests of eval/experiment.cpp's plumbing: method specs with their back end, the method factory, and which pass
-// times make up ms_total, and the cache of gradient inputs. What the metrics measure is tested in eval_metrics_test.cpp, and what they say about the
+// times make up ms_total, the cache of gradient inputs, a spec's own gradient input, and the observer. What the metrics measure is tested in eval_metrics_test.cpp, and what they say about the
 // methods in eval_stability_test.cpp; the Vulkan ports under rtdr eval in app_eval_test.cpp.
 #include "eval/experiment.h"
 
 #include "core/error.h"
 #include "eval/frame_cache.h"
+#include "eval/metrics.h"
 #include "scenes/gltf_loader.h"
 
 #include "cli_fixtures.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
+#include <map>
 
 namespace fs = std::filesystem;
 
@@ -177,4 +181,75 @@ TEST_CASE("gradient inputs are cached under every gradient parameter and continu
   CHECK_FALSE(fs::exists(path(0)));  // frames 4-5 came from the cache
   c.gradient.stratum_size = 9;
   CHECK_THROWS_WITH(rtdr::run_eval(c), Catch::Contains("stratum_size"));
+}
+
+TEST_CASE("a spec's gradient_<row> keys give its method an input of its own, as the run would with those rows") {
+  const rtdr::MethodSpec own = rtdr::parse_method_spec("asvgf:gradient_stratum_size=2:alpha=0.3");
+  REQUIRE(own.gradient_rows.size() == 1);
+  CHECK(own.gradient_rows[0] == std::pair<std::string, double>{"stratum_size", 2.0});
+  CHECK(own.svgf.alpha == 0.3f);
+  rtdr::GradientParams run;
+  run.light_cdf = 1;
+  const rtdr::GradientParams params = rtdr::spec_gradient(own, run);
+  CHECK(params.stratum_size == 2);
+  CHECK(params.light_cdf == 1);  // the run's other rows stay
+  CHECK(rtdr::parse_method_spec("asvgf:gradient_levels=3").gradient_rows.empty());  // asvgf_params.h's row
+  for (const char* bad : {"asvgf:gradient_stratum_size=9", "asvgf:gradient_stratum=2", "asvgf:stratum_size=2"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(rtdr::parse_method_spec(bad), rtdr::Error);
+  }
+
+  // Fig. 5's study in one run: asvgf on 3x3 and 2x2 strata, and svgf on the run's (3x3) input.
+  rtdr::EvalConfig c = tiny_config({"svgf", "asvgf", "asvgf:gradient_stratum_size=2"});
+  c.height = 18;  // 2 and 3 divide 24 x 18: at most 1/4 and 1/9 of the pixels are gradient samples
+  c.last_frame = 2;
+  std::map<std::string, std::vector<double>> share, rmse;
+  for (const rtdr::MetricsRow& row : rtdr::run_eval(c).rows) {
+    share[row.method + row.params].push_back(row.gradient_share);
+    rmse[row.method + row.params].push_back(row.rmse);
+  }
+  CHECK(share["asvgf"] == share["svgf"]);  // the same input
+  CHECK(share["asvgf"][0] == 0.0);         // frame 0 has no frame before it
+  CHECK(share["asvgf"][2] > 0.0);
+  CHECK(share["asvgf"][2] <= 1.0 / 9.0);
+  CHECK(share["asvgfgradient_stratum_size=2"][2] > share["asvgf"][2]);
+  CHECK(share["asvgfgradient_stratum_size=2"][2] <= 1.0 / 4.0);
+  // The same numbers as a run whose gradient input is 2x2 for every method.
+  rtdr::EvalConfig two = tiny_config({"asvgf"});
+  two.height = 18;
+  two.last_frame = 2;
+  two.gradient.stratum_size = 2;
+  std::vector<double> expected;
+  for (const rtdr::MetricsRow& row : rtdr::run_eval(two).rows) expected.push_back(row.rmse);
+  CHECK(rmse["asvgfgradient_stratum_size=2"] == expected);
+
+  // The sweep adds the stratum study only where asvgf is run.
+  const std::vector<std::string> with = rtdr::standard_sweep({"svgf", "asvgf"});
+  const std::vector<std::string> without = rtdr::standard_sweep({"svgf"});
+  CHECK(std::count(with.begin(), with.end(), "asvgf:gradient_stratum_size=2") == 1);
+  CHECK(std::count(with.begin(), with.end(), "asvgf:gradient_stratum_size=4") == 1);
+  CHECK(with.size() == without.size() + 2);
+}
+
+TEST_CASE("run_eval shows the caller every filtered frame with its reference, and measures the moving umbrae") {
+  rtdr::EvalConfig c = tiny_config({"none", "svgf"});
+  c.width = 48;
+  c.height = 27;
+  c.last_frame = 3;
+  std::vector<std::string> seen;
+  std::vector<double> recomputed;
+  c.observe = [&](const rtdr::MethodSpec& spec, int frame, const rtdr::Frame& out, const rtdr::RgbPlane& ref) {
+    seen.push_back(spec.text + " " + std::to_string(frame));
+    recomputed.push_back(rtdr::rmse(rtdr::rgb_plane(out, "color"), ref));
+  };
+  const rtdr::EvalResult result = rtdr::run_eval(c);
+  CHECK(seen == std::vector<std::string>{"none 0", "none 1", "none 2", "none 3", "svgf 0", "svgf 1", "svgf 2", "svgf 3"});
+  REQUIRE(result.rows.size() == recomputed.size());
+  int umbra_frames = 0;
+  for (size_t k = 0; k < recomputed.size(); ++k) {
+    CHECK(result.rows[k].rmse == recomputed[k]);
+    umbra_frames += !std::isnan(result.rows[k].umbra_rmse);
+    CHECK(result.rows[k].gradient_share == 0.0);  // plain input
+  }
+  CHECK(umbra_frames > 0);  // pillars' shadows move under a still camera
 }

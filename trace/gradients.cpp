@@ -18,6 +18,11 @@ std::vector<ParamInfo> gradient_param_table() { return {RTDR_GRADIENT_PARAMS(RTD
 std::vector<double> param_values(const GradientParams& params) { return {RTDR_GRADIENT_PARAMS(RTDR_PARAM_VALUE)}; }
 void validate(const GradientParams& p) { check_params("gradient", gradient_param_table(), param_values(p)); }
 
+bool set_param(GradientParams& params, const std::string& key, double value) {
+  RTDR_GRADIENT_PARAMS(RTDR_PARAM_SET)
+  return false;
+}
+
 namespace {
 
 // Salts the selection's hash, so that the stratum's choice is independent of the pixel seeds made from the
@@ -215,6 +220,14 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
     prev_indirect.data[i] = previous.luminance_indirect[s.source];
   }
   return frame;
+}
+
+double gradient_sample_share(const Frame& frame) {
+  if (!frame.has("gradient.source")) return 0.0;
+  const std::vector<uint32_t>& source = frame.uint_channel("gradient.source").data;
+  size_t samples = 0;
+  for (const uint32_t s : source) samples += s != kInvalidId;
+  return source.empty() ? 0.0 : double(samples) / double(source.size());
 }
 
 }  // namespace rtdr

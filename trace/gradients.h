@@ -75,6 +75,8 @@ std::vector<ParamInfo> gradient_param_table();
 std::vector<double> param_values(const GradientParams& params);
 // Throws rtdr::Error naming the first parameter outside its range.
 void validate(const GradientParams& params);
+// Sets the row named `key`; false when there is none. Throws rtdr::Error for a value outside the row's range.
+bool set_param(GradientParams& params, const std::string& key, double value);
 
 // What frame i needs of frame i-1, read from its layers (docs/buffers.md): its visibility buffer (id.instance,
 // id.triangle, bary.U/V, depth.Z), its seeds (rng.seed), the luminance of its demodulated direct and indirect
@@ -119,5 +121,9 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
 Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width, int height,
                                   const RenderSettings& settings, const GradientParams& params, const Frame* prev,
                                   TraceStats* stats = nullptr, const RowsDone& rows_done = {});
+
+// The share of a frame's pixels that are gradient samples (gradient.source); 0 for a frame without them. At most
+// one sample per stratum, so at most 1/s^2 with strata of s x s where s divides the width and the height.
+double gradient_sample_share(const Frame& frame);
 
 }  // namespace rtdr

@@ -197,6 +197,7 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<Frame> inputs;
   std::vector<RgbPlane> ref_colour, ref_display;
   std::vector<FloatPlane> ref_direct, ref_depth;  // for the umbrae
+  std::vector<RgbPlane> ref_position;
   const TonemapParams tonemap_params;
   // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
   // every method without rows of its own gets the same input.
@@ -212,9 +213,10 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
     ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));
     ref_direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
     ref_depth.push_back(ref.float_channel("depth.Z"));
+    ref_position.push_back(xyz_plane(ref, "position"));
     tick();
   }
-  const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_depth);
+  const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_position, ref_depth);
   // The inputs of specs with gradient rows of their own, one sequence per set of gradient parameters.
   std::map<std::vector<double>, std::vector<Frame>> own_inputs;
   for (const MethodSpec& spec : c.methods) {

@@ -424,21 +424,23 @@ double brightness_bias(const RgbPlane& test, const RgbPlane& reference, const Re
 }
 
 std::vector<Region> umbra_regions(const std::vector<FloatPlane>& direct_luminance,
-                                  const std::vector<FloatPlane>& depth) {
-  if (direct_luminance.size() != depth.size() || depth.empty())
-    throw Error("umbra_regions: needs one direct-light plane and one depth plane per frame, at least one frame");
+                                  const std::vector<RgbPlane>& position, const std::vector<FloatPlane>& depth) {
+  if (direct_luminance.size() != depth.size() || position.size() != depth.size() || depth.empty())
+    throw Error("umbra_regions: needs one direct-light, position and depth plane per frame, at least one frame");
+  const int w = depth.front().width, h = depth.front().height;
   const size_t n = depth.front().data.size();
   for (size_t f = 0; f < depth.size(); ++f)
-    if (depth[f].width != depth.front().width || depth[f].height != depth.front().height ||
-        direct_luminance[f].width != depth.front().width || direct_luminance[f].height != depth.front().height)
+    if (depth[f].width != w || depth[f].height != h || direct_luminance[f].width != w ||
+        direct_luminance[f].height != h || position[f].width != w || position[f].height != h)
       throw Error("umbra_regions: frame " + std::to_string(f) + " differs in size from the first");
-  // Per pixel: does it see the same surface in every frame, and the most direct light it ever receives.
+  // Per pixel: does it see the same surface point in every frame, and the most direct light it ever receives.
   std::vector<uint8_t> still(n, 1);
   std::vector<float> most(n, 0.0f);
   for (size_t f = 0; f < depth.size(); ++f)
     for (size_t i = 0; i < n; ++i) {
-      const float z0 = depth.front().data[i], z = depth[f].data[i];
-      if (!(z0 > 0.0f) || !(z > 0.0f) || std::abs(z - z0) > 0.01f * z0) still[i] = 0;  // 0: no surface
+      const float z0 = depth.front().data[i];
+      const bool surface = z0 > 0.0f && depth[f].data[i] > 0.0f;  // depth 0: no surface (docs/buffers.md)
+      if (!surface || glm::distance(position[f].data[i], position.front().data[i]) > 0.01f * z0) still[i] = 0;
       most[i] = std::max(most[i], direct_luminance[f].data[i]);
     }
   std::vector<Region> regions(depth.size(), Region(n, 0));

@@ -95,13 +95,14 @@ double brightness_bias(const RgbPlane& test, const RgbPlane& reference, const Re
 
 // The moving umbrae of a sequence under a still camera, Fig. 5's "umbra" [ASVGF18 Sec. 5.2]: for each frame,
 // the pixels whose reference direct light is below kUmbraFraction of the most that pixel receives in any
-// frame of the sequence. Only pixels that see the same surface throughout count (depth within 1 % of its
-// first frame's, never empty), and only where some frame gives them direct light. Inputs, one plane per frame:
-// the luminance of the reference's demodulated `direct` layer and its `depth.Z`. Under a moving camera hardly
-// a pixel keeps its depth, and the regions are empty.
+// frame of the sequence. Only pixels that see the same surface point throughout count (its world position
+// within 1 % of its depth of where it was in the first frame, never empty), and only where some frame gives
+// them direct light. Inputs, one plane per frame: the luminance of the reference's demodulated `direct` layer,
+// its `position` and its `depth.Z`. Under a moving camera hardly a pixel keeps its point, and the regions are
+// (nearly) empty.
 inline constexpr double kUmbraFraction = 0.1;
 std::vector<Region> umbra_regions(const std::vector<FloatPlane>& direct_luminance,
-                                  const std::vector<FloatPlane>& depth);
+                                  const std::vector<RgbPlane>& position, const std::vector<FloatPlane>& depth);
 
 // Lag of a per-frame error series after a sudden change at frame `change_frame` (the first frame that shows
 // the change): the number of frames k >= 0 until error[change_frame + k] is at or below `threshold`, so 0

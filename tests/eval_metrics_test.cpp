@@ -80,28 +80,35 @@ TEST_CASE("RMSE over a region by hand: only its pixels count, NaN for an empty r
   CHECK_THROWS_AS(rmse(test, reference, {1}), Error);
 }
 
-TEST_CASE("umbrae by hand: below a tenth of the pixel's most direct light, on surfaces that stay put") {
+TEST_CASE("umbrae by hand: below a tenth of the pixel's most direct light, on surface points that stay put") {
   // Four pixels over three frames. Pixel 0: lit, then in shadow, then lit. Pixel 1: in a penumbra, never below a
-  // tenth. Pixel 2: in shadow at frame 1, but its surface moves (depth 2 -> 3). Pixel 3: never lit.
+  // tenth. Pixel 2: in shadow at frame 1, but it sees another point then (x moves by 0.1 at depth 2: 5 % of
+  // it). Pixel 3: never lit.
   auto plane = [](std::vector<float> v) {
     FloatPlane p(4, 1);
     p.data = std::move(v);
     return p;
   };
+  auto points = [](float x2) {
+    RgbPlane p(4, 1);
+    p.data = {{0, 0, 0}, {1, 0, 0}, {x2, 0, 0}, {3, 0, 0}};
+    return p;
+  };
   const std::vector<FloatPlane> direct = {plane({1.0f, 1.0f, 1.0f, 0.0f}), plane({0.05f, 0.5f, 0.0f, 0.0f}),
                                           plane({0.8f, 0.2f, 1.0f, 0.0f})};
-  const std::vector<FloatPlane> depth = {plane({2.0f, 2.0f, 2.0f, 2.0f}), plane({2.01f, 2.0f, 3.0f, 2.0f}),
-                                         plane({2.0f, 2.0f, 2.0f, 2.0f})};
-  const std::vector<Region> umbrae = umbra_regions(direct, depth);
+  const FloatPlane depth = plane({2.0f, 2.0f, 2.0f, 2.0f});
+  const std::vector<RgbPlane> position = {points(2.0f), points(2.1f), points(2.0f)};
+  const std::vector<Region> umbrae = umbra_regions(direct, position, {depth, depth, depth});
   REQUIRE(umbrae.size() == 3);
   CHECK(umbrae[0] == Region{0, 0, 0, 0});
-  CHECK(umbrae[1] == Region{1, 0, 0, 0});  // 0.05 < 0.1 x 1; depth 2.01 is within 1 %
+  CHECK(umbrae[1] == Region{1, 0, 0, 0});  // 0.05 < 0.1 x 1
   CHECK(umbrae[2] == Region{0, 0, 0, 0});
-  // A pixel that sees no surface in some frame (depth 0) never counts: pixel 0 drops out. Pixel 2, now still,
-  // is in its umbra at frame 1.
-  const std::vector<FloatPlane> gone = {depth[0], plane({0.0f, 2.0f, 2.0f, 2.0f}), depth[2]};
-  CHECK(umbra_regions(direct, gone)[1] == Region{0, 0, 1, 0});
-  CHECK_THROWS_AS(umbra_regions(direct, {depth[0]}), Error);
+  // Within 1 % of the depth the point counts as the same (jitter): pixel 2 is in its umbra at frame 1.
+  const std::vector<RgbPlane> jittered = {points(2.0f), points(2.015f), points(2.0f)};
+  CHECK(umbra_regions(direct, jittered, {depth, depth, depth})[1] == Region{1, 0, 1, 0});
+  // A pixel that sees no surface in some frame (depth 0) never counts: pixel 0 drops out.
+  CHECK(umbra_regions(direct, jittered, {depth, plane({0.0f, 2.0f, 2.0f, 2.0f}), depth})[1] == Region{0, 0, 1, 0});
+  CHECK_THROWS_AS(umbra_regions(direct, position, {depth}), Error);
 }
 
 TEST_CASE("relMSE by hand: mean of (x - y)^2 / (y^2 + eps), eps = 0.01") {

@@ -9,7 +9,8 @@ Cli::Cli() {
   app.add_option("--threads", threads, "worker threads (0 = all cores); outputs are identical for any count")
       ->check(CLI::Range(0, 1024));
   commands = {add_render_command(app), add_filter_command(app), add_probe_command(app),
-              add_eval_command(app),   add_bench_command(app),  add_compare_command(app)};
+              add_eval_command(app),   add_bench_command(app),  add_compare_command(app),
+              add_check_command(app)};
 }
 
 }  // namespace rtdr

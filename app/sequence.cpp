@@ -65,6 +65,50 @@ Frame read_filter_input(const std::string& path, SequenceShape& shape, const Inp
   return frame;
 }
 
+std::vector<std::string> input_problems(const Frame& frame, const InputChannels& channels, const Frame* first,
+                                        bool gradient_header) {
+  std::vector<std::string> problems;
+  if (first && (frame.width() != first->width() || frame.height() != first->height()))
+    problems.push_back("size " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + ", but " +
+                       first->source + " is " + std::to_string(first->width()) + "x" + std::to_string(first->height()));
+  // Missing channels, grouped by layer (the name before the last '.', as docs/buffers.md names layers).
+  std::vector<std::pair<std::string, std::vector<std::string>>> missing;  // layer, its missing channels, in order
+  const auto check = [&](const std::string& name, bool want_float) {
+    const bool is_float = frame.float_channels().count(name) > 0, is_uint = frame.uint_channels().count(name) > 0;
+    if (!is_float && !is_uint) {
+      const std::string layer = name.substr(0, name.rfind('.'));
+      if (missing.empty() || missing.back().first != layer) missing.push_back({layer, {}});
+      missing.back().second.push_back(name);
+    } else if (is_float != want_float) {
+      problems.push_back("channel '" + name + "' is " + (is_float ? "float" : "uint") + ", but the method reads it as " +
+                         (want_float ? "float" : "uint"));
+    } else if (want_float) {
+      const FloatPlane& plane = frame.float_channel(name);
+      size_t bad = 0, first_bad = 0;
+      for (size_t i = 0; i < plane.data.size(); ++i)
+        if (!std::isfinite(plane.data[i]) && bad++ == 0) first_bad = i;
+      if (bad)
+        problems.push_back("channel '" + name + "' holds NaN or infinity at " + std::to_string(bad) +
+                           " pixels, the first at (" + std::to_string(first_bad % size_t(plane.width)) + ", " +
+                           std::to_string(first_bad / size_t(plane.width)) + ")");
+    }
+  };
+  for (const std::string& name : channels.floats) check(name, true);
+  for (const std::string& name : channels.uints) check(name, false);
+  for (const auto& [layer, names] : missing) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    bool partly = false;  // some channel of the layer is there
+    for (const auto& [n, plane] : frame.float_channels()) partly = partly || n.rfind(layer + ".", 0) == 0;
+    for (const auto& [n, plane] : frame.uint_channels()) partly = partly || n.rfind(layer + ".", 0) == 0;
+    problems.push_back(partly ? "layer '" + layer + "' lacks " + list : "missing layer '" + layer + "' (" + list + ")");
+  }
+  if (gradient_header && !frame.attributes.count("rtdr.gradient.stratum_size"))
+    problems.push_back("no header attribute rtdr.gradient.stratum_size: not rendered with gradient samples "
+                       "(rtdr render --gradients)");
+  return problems;
+}
+
 void require_finite_output(const Frame& frame, const std::string& what,
                            const std::function<std::string(const std::string& channel)>& pass_of) {
   for (const auto& [name, plane] : frame.float_channels())

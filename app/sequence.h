@@ -38,6 +38,14 @@ struct SequenceShape {
 // Throws a one-line rtdr::Error naming the file(s).
 Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels);
 
+// Everything wrong with one frame as the input of a method that reads `channels`, one line each, for rtdr check:
+// each layer that lacks channels, with the channels it lacks; each channel of the wrong type; each channel that
+// holds NaN or infinity, with how many pixels and the first; a size other than `first`'s (when given); and, for
+// `gradient_header`, a missing rtdr.gradient.stratum_size attribute. Empty when the frame is fine. Unlike
+// read_filter_input it does not stop at the first problem.
+std::vector<std::string> input_problems(const Frame& frame, const InputChannels& channels, const Frame* first,
+                                        bool gradient_header);
+
 // Checks a frame before it is written: every float channel is finite. Otherwise throws a one-line rtdr::Error
 // naming `what` (the frame), the channel, the pass that wrote it (`pass_of(channel)`) and the pixel.
 void require_finite_output(const Frame& frame, const std::string& what,

@@ -114,6 +114,7 @@ def main():
                     "svgf:backend=vulkan:illumination=fp16 --sweep --frames 20-45 --size 320x180 --ref-spp 64",
         "bench.txt": "bench --backend cpu,vulkan --size 1920x1080 --runs 3 --warmup 1 --scenes all --submits 2",
         "compare.txt": "compare --in out/a --frames 0-4 --csv out/c.csv --rel-floor 0.01 --max-rel-error 0.5",
+        "check.txt": "check --in out/a --method asvgf --frames 0-4",
     }
     for name, line in commands.items():
         write("cli_args_fuzz", name, ("\n".join(line.split()) + "\n").encode("ascii"))

@@ -4,7 +4,7 @@
 // the port matches the golden pass exactly, 1 when it does not.
 #include "eval/frame_diff.h"      // rtdr::diff_channels: worst absolute and relative difference per channel
 #include "filters/svgf/atrous.h"  // rtdr::atrous_level: the golden pass
-#include "filters/svgf/prefilter.h"
+#include "filters/user_buffers.h"  // rtdr::BufferView: your buffers, with their strides, as planes
 
 #include <algorithm>
 #include <cmath>
@@ -107,16 +107,9 @@ PortInputs make_inputs(int width, int height) {
   return in;
 }
 
-// The same inputs as RTDR's planes (filters/image.h, filters/surface_planes.h).
-rtdr::RgbPlane rgb_plane(const std::vector<float>& v, int w, int h) {
-  rtdr::RgbPlane plane(w, h);
-  for (size_t i = 0; i < plane.data.size(); ++i) plane.data[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-  return plane;
-}
-rtdr::FloatPlane float_plane(const std::vector<float>& v, int w, int h) {
-  rtdr::FloatPlane plane(w, h);
-  plane.data = v;
-  return plane;
+// A packed buffer of `channels` floats per pixel, as a view (filters/user_buffers.h: strides 0 mean packed).
+rtdr::BufferView view(const std::vector<float>& v, int w, int h, int channels) {
+  return rtdr::BufferView{v.data(), w, h, channels, 0, 0};
 }
 
 // An output as a frame of channels <name>.R/G/B and <name>.V, for the comparison helper.
@@ -135,18 +128,14 @@ int main() {
   const int width = 48, height = 32, level = 1;
   PortInputs in = make_inputs(width, height);
 
-  // The golden pass, on RTDR's planes.
-  const rtdr::RgbPlane color = rgb_plane(in.rgb, width, height);
-  const rtdr::FloatPlane variance = float_plane(in.variance, width, height);
+  // The golden pass, on RTDR's planes, read from the port's buffers.
+  const rtdr::RgbPlane color = rtdr::rgb_plane(view(in.rgb, width, height, 3));
+  const rtdr::FloatPlane variance = rtdr::float_plane(view(in.variance, width, height, 1));
   rtdr::SurfacePlanes surface;
-  surface.depth = float_plane(in.depth, width, height);
-  surface.depth_grad = rtdr::Vec2Plane(width, height);
-  surface.normal = rgb_plane(in.normal, width, height);
-  surface.mesh = rtdr::UIntPlane(width, height);
-  for (size_t i = 0; i < surface.mesh.data.size(); ++i) {
-    surface.depth_grad.data[i] = {in.depth_grad[2 * i], in.depth_grad[2 * i + 1]};
-    surface.mesh.data[i] = in.mesh[i];
-  }
+  surface.depth = rtdr::float_plane(view(in.depth, width, height, 1));
+  surface.depth_grad = rtdr::vec2_plane(view(in.depth_grad, width, height, 2));
+  surface.normal = rtdr::rgb_plane(view(in.normal, width, height, 3));
+  surface.mesh = rtdr::uint_plane(rtdr::BufferView{in.mesh.data(), width, height, 1, 0, 0});
   const rtdr::SvgfParams params;  // sigma_z 1, sigma_n 128, sigma_l 4, epsilon 1e-4, the 5x5 B3 kernel
   const rtdr::AtrousOutput golden = rtdr::atrous_level(color, variance, surface, level, params);
 
@@ -158,7 +147,7 @@ int main() {
   // Every channel's worst absolute and relative difference, with its pixel and both values.
   const double rel_floor = 1e-2;
   const std::vector<rtdr::ChannelDiff> diffs = rtdr::diff_channels(
-      as_frame(rgb_plane(rgb_out, width, height), float_plane(var_out, width, height)),
+      as_frame(rtdr::rgb_plane(view(rgb_out, width, height, 3)), rtdr::float_plane(view(var_out, width, height, 1))),
       as_frame(golden.color, golden.variance), rel_floor);
   double worst = 0.0;
   std::printf("a-trous level %d, %dx%d: my port against RTDR's golden pass\n", level, width, height);

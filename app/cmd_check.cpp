@@ -2,7 +2,8 @@
 // method. It reads every frame and prints one line per problem, naming the file and the layer: a layer that is
 // missing or lacks channels, a channel of the wrong type or holding NaN or infinity, a frame of another size than
 // the first, a file that is no readable EXR, and for asvgf and a-eaw a frame without gradient samples. It checks
-// every frame and every layer rather than stopping at the first problem, and exits 1 when it found any. The
+// every frame and every layer rather than stopping at the first problem, and exits 1 when it found any; channels
+// that may be left out (emission, indirect: 0) are noted when absent, not counted as problems. The
 // layers each method reads, and their conventions: docs/buffers.md, "Feeding your engine's frames".
 #include "app/commands.h"
 #include "app/sequence.h"
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <set>
 
 namespace rtdr {
 namespace {
@@ -29,11 +31,14 @@ void run_check(const CheckOptions& o) {
   const std::vector<SequenceFrame> frames = list_sequence(o.in, o.frames);
   std::optional<Frame> first;  // its size and file, without planes
   size_t problems = 0, bad_frames = 0;
+  std::set<std::string> defaulted;  // channels some frame leaves out, which take their default
   for (const SequenceFrame& f : frames) {
     std::vector<std::string> found;
     try {
       const Frame frame = read_exr(f.path);
       found = input_problems(frame, channels, first ? &*first : nullptr, method->reads_gradient_samples());
+      for (const auto& [name, value] : channels.defaults)
+        if (!frame.has(name)) defaulted.insert(name);
       if (!first) {
         first = Frame(frame.width(), frame.height());
         first->source = f.path;
@@ -53,6 +58,9 @@ void run_check(const CheckOptions& o) {
                 layers + ", docs/buffers.md)");
   std::printf("ok: %zu frames of %dx%d in '%s' hold the %s that %s reads, all finite\n", frames.size(),
               first->width(), first->height(), o.in.c_str(), layers.c_str(), o.method.c_str());
+  for (const std::string& name : defaulted)
+    std::printf("note: some frames leave out %s, which then holds %g at every pixel\n", name.c_str(),
+                double(channels.defaults.at(name)));
 }
 
 }  // namespace

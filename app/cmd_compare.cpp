@@ -93,7 +93,8 @@ void run_compare(const CompareOptions& o) {
 
   std::map<std::string, Worst> worst_abs, worst_rel;
   for (const SequenceFrame& f : frames) {
-    const Frame in = read_exr(f.path);
+    Frame in = read_exr(f.path);
+    fill_input_defaults(in, golden.method->inputs());
     const Frame reference = filter_with_dump(*golden.method, in);
     const Frame test = filter_with_dump(*port.method, in);
     require_declared(reference, "cpu");

@@ -54,6 +54,7 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
 
 Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
   Frame frame = read_exr(path);
+  fill_input_defaults(frame, channels);  // what the input may leave out (emission, indirect), filled in
   if (shape.first.source.empty()) {
     shape.first = Frame(frame.width(), frame.height());
     shape.first.source = path;
@@ -76,6 +77,7 @@ std::vector<std::string> input_problems(const Frame& frame, const InputChannels&
   const auto check = [&](const std::string& name, bool want_float) {
     const bool is_float = frame.float_channels().count(name) > 0, is_uint = frame.uint_channels().count(name) > 0;
     if (!is_float && !is_uint) {
+      if (channels.defaults.count(name)) return;  // left out: it takes its default (fill_input_defaults)
       const std::string layer = name.substr(0, name.rfind('.'));
       if (missing.empty() || missing.back().first != layer) missing.push_back({layer, {}});
       missing.back().second.push_back(name);

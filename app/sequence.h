@@ -34,12 +34,13 @@ struct SequenceShape {
 };
 
 // Reads one frame and checks it as the input of a method that reads `channels` (Method::inputs()): each is
-// present, of its type, and finite, and the frame's size is `shape`'s (the first frame read sets `shape`).
+// present (or, in channels.defaults, filled with its default), of its type, and finite, and the frame's size is
+// `shape`'s (the first frame read sets `shape`).
 // Throws a one-line rtdr::Error naming the file(s).
 Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels);
 
 // Everything wrong with one frame as the input of a method that reads `channels`, one line each, for rtdr check:
-// each layer that lacks channels, with the channels it lacks; each channel of the wrong type; each channel that
+// each layer that lacks channels, with the channels it lacks (a channel with a default may be absent); each channel of the wrong type; each channel that
 // holds NaN or infinity, with how many pixels and the first; a size other than `first`'s (when given); and, for
 // `gradient_header`, a missing rtdr.gradient.stratum_size attribute. Empty when the frame is fine. Unlike
 // read_filter_input it does not stop at the first problem.

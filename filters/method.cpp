@@ -58,6 +58,11 @@ const std::vector<MethodEntry>& registry() {
 
 }  // namespace
 
+void fill_input_defaults(Frame& frame, const InputChannels& channels) {
+  for (const auto& [name, value] : channels.defaults)
+    if (!frame.has(name)) frame.add_float(name, value);
+}
+
 double total_ms(const PassTimes& times) {
   double total = 0.0;
   for (const auto& [pass, ms] : times)

@@ -37,7 +37,13 @@ double total_ms(const PassTimes& times);
 struct InputChannels {
   std::vector<std::string> floats;
   std::vector<std::string> uints;
+  // Float channels among them that an input may leave out, and the value they then hold at every pixel
+  // (docs/buffers.md, "Feeding your engine's frames"): what an engine without them would write.
+  std::map<std::string, float> defaults;
 };
+// Adds every channel of channels.defaults that `frame` lacks, filled with its default. Callers that hand a
+// user's frame to Method::filter call it first (rtdr filter, probe and compare do, through app/sequence.h).
+void fill_input_defaults(Frame& frame, const InputChannels& channels);
 
 class Method {
  public:

@@ -1,5 +1,6 @@
 // rtdr check (app/cmd_check.cpp): a good sequence passes; with each layer a method reads removed in turn, exactly
-// that layer is named, in the frame that lacks it; NaN, a frame of another size and a file that is no EXR are
+// that layer is named, in the frame that lacks it, or noted where it has a default (emission, indirect: filtered
+// as zeros, to the bit); NaN, a frame of another size and a file that is no EXR are
 // each named too, and every problem of every frame is reported, not only the first.
 #include "core/exr_io.h"
 #include "filters/method.h"
@@ -60,11 +61,29 @@ TEST_CASE("rtdr check: each missing layer named exactly, in its frame, and every
     fs::copy_file(good / "frame_0000.exr", bad / "frame_0000.exr");
     rtdr::write_exr((bad / "frame_0001.exr").string(), without_layer(frame1, layer));
     const rtdr::cli::RunResult r = run_rtdr("check --in " + bad.string(), dir);
+    if (layer == "emission" || layer == "indirect") {  // these may be left out: they default to 0
+      CHECK(r.exit_code == 0);
+      CHECK_THAT(r.out, Catch::Contains("note: some frames leave out " + layer + ".R, which then holds 0"));
+      continue;
+    }
     CHECK(r.exit_code == 1);
     CHECK(lines_with(r.out, "\n") == 1);  // one problem: this layer, in frame 1
     CHECK_THAT(r.out, Catch::StartsWith((bad / "frame_0001.exr").string() + ": missing layer '" + layer + "'"));
     CHECK_THAT(r.err, Catch::Contains("1 problem(s) in 1 of 2 frames"));
   }
+
+  // A frame that leaves out emission is filtered as one whose emission is 0 everywhere, to the bit.
+  const fs::path zero = dir / "zero_emission";
+  fs::create_directories(zero);
+  fs::copy_file(good / "frame_0000.exr", zero / "frame_0000.exr");
+  rtdr::Frame zeroed = without_layer(frame1, "emission");
+  for (const char* c : {"emission.R", "emission.G", "emission.B"}) zeroed.add_float(c, 0.0f);
+  rtdr::write_exr((zero / "frame_0001.exr").string(), zeroed);
+  for (const fs::path& in : {dir / "no_emission", zero})
+    REQUIRE(run_rtdr("filter --method svgf --in " + in.string() + " --out " + in.string() + "_svgf", dir).exit_code == 0);
+  const rtdr::Frame left_out = rtdr::read_exr((dir / "no_emission_svgf" / "frame_0001.exr").string());
+  const rtdr::Frame written = rtdr::read_exr((dir / "zero_emission_svgf" / "frame_0001.exr").string());
+  CHECK(left_out.float_channel("color.G").data == written.float_channel("color.G").data);
 
   // Everything at once: one channel of a layer gone, NaN, another size, not an EXR; and gradient samples for asvgf.
   const fs::path mixed = dir / "mixed";

@@ -149,7 +149,8 @@ std::vector<std::string> standard_sweep(const std::vector<std::string>& methods)
   for (const char* alpha : {"0.05", "0.1", "0.5"}) specs.push_back(std::string("svgf:alpha=") + alpha + ":alpha_moments=" + alpha);
   specs.push_back("svgf:kernel_size=3");  // plus "svgf" itself: 5 levels, alpha 0.2, the 5x5 kernel
   // [ASVGF18 Fig. 5]: the stratum size, plus "asvgf" itself on 3x3 strata.
-  if (std::find(methods.begin(), methods.end(), "asvgf") != methods.end())
+  const auto asvgf = [](const std::string& spec) { return spec == "asvgf" || spec.rfind("asvgf:", 0) == 0; };
+  if (std::any_of(methods.begin(), methods.end(), asvgf))
     for (const char* s : {"2", "4"}) specs.push_back(std::string("asvgf:gradient_stratum_size=") + s);
   return specs;
 }

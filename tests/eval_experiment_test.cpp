@@ -229,6 +229,7 @@ TEST_CASE("a spec's gradient_<row> keys give its method an input of its own, as 
   CHECK(std::count(with.begin(), with.end(), "asvgf:gradient_stratum_size=2") == 1);
   CHECK(std::count(with.begin(), with.end(), "asvgf:gradient_stratum_size=4") == 1);
   CHECK(with.size() == without.size() + 2);
+  CHECK(rtdr::standard_sweep({"asvgf:alpha=0.2"}) == with);  // asvgf with parameters of its own runs too
 }
 
 TEST_CASE("run_eval shows the caller every filtered frame with its reference, and measures the moving umbrae") {

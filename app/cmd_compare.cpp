@@ -15,7 +15,6 @@
 #include "app/sequence.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/exr_io.h"
 #include "eval/frame_diff.h"
 #include "filters/method.h"
 #include "filters/passes.h"
@@ -93,8 +92,7 @@ void run_compare(const CompareOptions& o) {
 
   std::map<std::string, Worst> worst_abs, worst_rel;
   for (const SequenceFrame& f : frames) {
-    Frame in = read_exr(f.path);
-    fill_input_defaults(in, golden.method->inputs());
+    const Frame in = read_method_input(f.path, golden.method->inputs());
     const Frame reference = filter_with_dump(*golden.method, in);
     const Frame test = filter_with_dump(*port.method, in);
     require_declared(reference, "cpu");

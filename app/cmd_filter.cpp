@@ -46,8 +46,7 @@ void run_filter(const FilterOptions& o) {
               o.method == "none" ? "" : describe(o.params.svgf).c_str());
   if (o.method == "asvgf") std::printf("%s", describe_params(asvgf_param_table(), param_values(o.params.asvgf)).c_str());
   for (const SequenceFrame& f : frames) {
-    Frame in = read_exr(f.path);
-    fill_input_defaults(in, method->inputs());
+    const Frame in = read_method_input(f.path, method->inputs());
     const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
     require_finite_output(filtered, "frame " + std::to_string(f.index) + " of --in '" + o.in + "'", pass_writing);
     write_exr(out.file(frame_name(f.index, "exr")), filtered);

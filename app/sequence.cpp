@@ -52,9 +52,14 @@ std::vector<SequenceFrame> list_sequence(const std::string& dir, const std::stri
   return selected;
 }
 
-Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
+Frame read_method_input(const std::string& path, const InputChannels& channels) {
   Frame frame = read_exr(path);
   fill_input_defaults(frame, channels);  // what the input may leave out (emission, indirect), filled in
+  return frame;
+}
+
+Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
+  Frame frame = read_method_input(path, channels);
   if (shape.first.source.empty()) {
     shape.first = Frame(frame.width(), frame.height());
     shape.first.source = path;

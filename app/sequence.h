@@ -33,6 +33,11 @@ struct SequenceShape {
   Frame first;
 };
 
+// Reads one frame as the input of a method that reads `channels`, the channels it may leave out filled with their
+// defaults (filters/method.h fill_input_defaults), without checking the rest: for a frame read_filter_input has
+// checked already.
+Frame read_method_input(const std::string& path, const InputChannels& channels);
+
 // Reads one frame and checks it as the input of a method that reads `channels` (Method::inputs()): each is
 // present (or, in channels.defaults, filled with its default), of its type, and finite, and the frame's size is
 // `shape`'s (the first frame read sets `shape`).

@@ -7,6 +7,8 @@
 // A buffer already in RTDR's layout needs no copy at all: move it into a plane,
 //   rtdr::FloatPlane depth;  depth.width = w;  depth.height = h;  depth.data = std::move(my_depth);
 //
+// Plumbing, not a pass: it implements no equation of the papers, and the planes it makes hold the values unchanged.
+//
 // Errors (a null buffer, a size below 1, strides that make pixels or rows overlap, a channel count the plane
 // cannot hold) throw rtdr::Error with a one-line message, as the rtdr command prints them.
 #pragma once

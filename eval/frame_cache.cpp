@@ -13,7 +13,8 @@ namespace rtdr {
 namespace {
 
 // Bump when the meaning of rendered layers changes, so old cache entries are not reused.
-constexpr int kCacheVersion = 1;
+// 2: frames gained TRMV's layers (motion.shadow, motion.shadow_splat, direct.shading).
+constexpr int kCacheVersion = 2;
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): a small, well-spread hash of the scene file's bytes.
 uint64_t fnv1a(const std::string& bytes) {

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "motion/backproject.h"
+#include "motion/shadow.h"
 #include "trace/sampler.h"
 
 #include <chrono>
@@ -134,6 +135,7 @@ Frame render_frame(const Scene& scene, int frame_index, int width, int height, c
   write_gbuffer_layers(scene, geometry, frame);
   write_motion_layers(scene, geometry, frame);
   const TraceStats s = trace_layers(scene, geometry, settings, frame, rows_done);
+  write_shadow_motion_layers(scene, geometry, frame);  // from the path record just traced [TRMV21 Eq. 3]
   if (stats) *stats = s;
   return frame;
 }

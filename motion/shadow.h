@@ -1,0 +1,87 @@
+// Shadow motion vectors [TRMV21 Eq. 3]: where the shadow a pixel lies in was in the previous frame.
+//
+// Pass: shadow_motion(scene, geometry, shadow rays) -> motion.shadow per pixel.
+//   in:  per pixel the primary vertex's shadow ray as the path tracer recorded it (path.light, path.blocker and
+//        their instances, trace/path_tracer.h), the visibility buffer (the receiver), the poses and Views of
+//        this frame and the previous one
+//   out: motion.shadow = x^V_{i-1} - x_i in pixels, and motion.shadow.valid (1 where Eq. 3 gives a point)
+//
+// A shadow moves with its light and its blocker, not with the surface it falls on: under a moving fence the
+// floor is still, its back-projected motion is 0, and history fetched along it smears the slats' shadows over
+// the frames (the ghosting of [TRMV21 Fig. 8]). TRMV21 Eq. 3 follows the shadow instead:
+//
+//   x^V_{i-1} = P_{i-1} intersect[ T^{-1} l_i -> T^{-1} b_i ; T^{-1} plane(s_i) ],   m^V = x^V_{i-1} - x_i
+//
+// The line from the light sample l_i through the blocker b_i, both carried back to the previous frame with
+// their own instance's motion T^{-1} = M_k(t_{i-1}) M_k(t_i)^{-1}, meets the receiver's plane (the tangent plane of
+// s_i, carried back with the receiver's motion) where the same shadow point was; P_{i-1} projects it with the
+// previous camera.
+//
+// Which point is x_i (our choice, motion/README.md, "Shadow motion: the choices"). The shadow ray starts a
+// little off the surface (trace/path_tracer.cpp, offset_origin), so the line l_i -> b_i meets the receiver's
+// plane at s^_i, up to a millimetre or so from s_i (the pixel's `position`): a few tenths of a pixel. We use
+// that point in both frames: x_i = P_i(s^_i) and x^V_{i-1} = P_{i-1}(s^_{i-1}), so that m^V is the motion of
+// one point, the ray's own. Then a static scene gives m^V = the surface motion exactly (both are the jitter
+// difference), and the closed form of a test is the ray's line s = l + t (b - l). Using the pixel centre for
+// x_i, as the paper writes it, would add the offset's sub-pixel error to every vector.
+//
+// Valid where (else motion.shadow is (0, 0) and .valid is 0):
+// - the pixel sees a surface and its shadow ray was blocked (a blocker instance is recorded);
+// - the line is not parallel to the receiver's plane, in either frame: |n . (b - l)| > kShadowParallelCosine |b - l|;
+// - the receiver lies beyond the blocker, seen from the light: t > 1 on the line l + t (b - l), in both frames;
+// - the previous point is in front of the previous camera (depth >= znear).
+// The receiver's plane is its geometric normal's (the triangle's face), not the interpolated shading normal: a
+// shadow falls on the face, and the face is what Eq. 3 intersects.
+//
+// One light sample per pixel gives one m^V, from that sample's light (TRMV21 Sec. 6: several moving lights are
+// a stated failure). Only pixels whose shadow ray was blocked have m^V; motion/shadow_splat.h spreads it.
+#pragma once
+
+#include "core/frame.h"
+#include "raster/gbuffer_frame.h"
+#include "raster/view.h"
+#include "scenes/scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace rtdr {
+
+// A line parallel to the plane within this cosine (about 6e-5 degrees) has no intersection worth using.
+inline constexpr float kShadowParallelCosine = 1e-6f;
+
+// T^{-1} of [TRMV21 Eq. 3] for every instance: M_k(t_{i-1}) M_k(t_i)^{-1}, which carries a world point on instance
+// k at this frame's time to where it was in the previous frame.
+std::vector<glm::mat4> instance_to_previous(const ScenePose& pose, const ScenePose& prev_pose);
+
+// One pixel's shadow ray as the path tracer recorded it (the path.* layers), and its receiver.
+struct ShadowRay {
+  glm::vec3 light{0.0f};    // l_i, the light sample
+  glm::vec3 blocker{0.0f};  // b_i, the nearest occluder of the shadow ray
+  glm::vec3 receiver{0.0f}; // s_i, the pixel's surface point
+  glm::vec3 receiver_normal{0.0f};  // n(s_i), the receiver's face normal (unit; its sign does not matter)
+  uint32_t light_instance = kInvalidId, blocker_instance = kInvalidId, receiver_instance = kInvalidId;
+};
+
+struct ShadowMotion {
+  glm::vec2 motion{0.0f};  // m^V = x^V_{i-1} - x_i, pixels; (0, 0) when not valid
+  bool valid = false;
+};
+
+// The golden per-pixel function [TRMV21 Eq. 3]. `to_previous` is instance_to_previous(pose, prev_pose).
+ShadowMotion shadow_motion_pixel(const ShadowRay& ray, const std::vector<glm::mat4>& to_previous, const View& view,
+                                 const View& prev_view);
+
+// The shadow ray of every pixel, from the frame's path.* layers and the geometry's visibility buffer.
+std::vector<ShadowRay> shadow_rays(const Scene& scene, const FrameGeometry& geometry, const Frame& frame);
+
+// Every pixel's shadow motion, row-major.
+std::vector<ShadowMotion> shadow_motion(const Scene& scene, const FrameGeometry& geometry, const Frame& frame);
+
+// Adds motion.shadow.X, motion.shadow.Y and motion.shadow.valid (uint 0/1) to a frame that holds the path.*
+// layers (trace_layers), then the splatted field motion.shadow_splat.X/Y (motion/shadow_splat.h).
+void write_shadow_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
+
+}  // namespace rtdr

@@ -1,0 +1,54 @@
+// The splat of shadow motion vectors [TRMV21 Sec. 4.1]. Window, weights and fallback: motion/shadow_splat.h.
+#include "motion/shadow_splat.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace rtdr {
+
+glm::vec2 splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
+                                    const std::vector<float>& depth, int width, int height, int size, int x, int y) {
+  const size_t p = size_t(y) * size_t(width) + size_t(x);
+  const float z_p = depth[p];
+  if (z_p <= 0.0f) return glm::vec2(0.0f);  // no surface
+  const int radius = size / 2;
+  glm::vec2 sum(0.0f);
+  int count = 0;  // splats landed: every weight is 1 (a box)
+  for (int qy = std::max(0, y - radius); qy <= std::min(height - 1, y + radius); ++qy) {
+    for (int qx = std::max(0, x - radius); qx <= std::min(width - 1, x + radius); ++qx) {
+      const size_t q = size_t(qy) * size_t(width) + size_t(qx);
+      if (!shadow[q].valid) continue;  // only in-shadow pixels with an Eq. 3 vector splat
+      // The same surface: depths within kShadowSplatDepthRelative of the larger (symmetric in p and q).
+      if (std::abs(depth[q] - z_p) > kShadowSplatDepthRelative * std::max(depth[q], z_p)) continue;
+      sum += shadow[q].motion;
+      ++count;
+    }
+  }
+  // "weight averaged into the center of each filter" [TRMV21 Sec. 4.1]; nothing landed: the surface motion.
+  return count > 0 ? sum / float(count) : surface_motion[p];
+}
+
+std::vector<glm::vec2> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
+                                           const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,
+                                           int width, int height, int size) {
+  const size_t pixels = size_t(width) * size_t(height);
+  if (shadow.size() != pixels || surface_motion.size() != pixels || depth.size() != pixels)
+    throw Error("splat_shadow_motion: planes of " + std::to_string(shadow.size()) + ", " +
+                std::to_string(surface_motion.size()) + " and " + std::to_string(depth.size()) + " pixels for " +
+                std::to_string(width) + "x" + std::to_string(height));
+  if (size < 1 || size % 2 == 0)
+    throw Error("splat_shadow_motion: the window's side must be odd and at least 1, not " + std::to_string(size));
+  std::vector<glm::vec2> out(pixels);
+  parallel_rows(height, [&](int y) {
+    for (int x = 0; x < width; ++x)
+      out[size_t(y) * size_t(width) + size_t(x)] =
+          splat_shadow_motion_pixel(shadow, surface_motion, depth, width, height, size, x, y);
+  });
+  return out;
+}
+
+}  // namespace rtdr

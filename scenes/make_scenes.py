@@ -3,7 +3,7 @@
 
     /usr/bin/python3 scenes/make_scenes.py
 
-Writes the shipped scenes scenes/<name>.gltf (SCENES below: cornell, pillars and six failure cases) and the
+Writes the shipped scenes scenes/<name>.gltf (SCENES below: cornell, pillars and seven failure cases) and the
 loader's test fixtures tests/data/*.gltf (see make_test_fixtures.py).
 The output is deterministic: running it again must leave `git status` clean.
 
@@ -142,7 +142,7 @@ def pillars():
 
 
 # --- The failure cases ----------------------------------------------------------------------------------
-# Six scenes, each modelling only the situation in which a temporal denoiser fails that a paper figure
+# Seven scenes, each modelling only the situation in which a temporal denoiser fails that a paper figure
 # shows, with a few boxes and quads. Each is 2-3 s of animation at 30 fps (frame f at t = f / 30 s); the
 # event times below are repeated in scenes/README.md and checked by tests/scenes_failure_cases_test.cpp.
 # Surfaces are diffuse (metallic 0) except the glossy scene's floor; every light is a one-sided quad or
@@ -463,8 +463,84 @@ def static():
     return gltf
 
 
+# --- Shadow fold -----------------------------------------------------------------------------------------
+# The scene for TRMV's shadow motion vector under a moving light [TRMV21 Sec. 4.1, Eq. 3: the light term
+# T^-1 l_i] and its falloff on non-planar receivers [Eq. 4] (the paper's Fig. 9, apples: curved receivers
+# under a fast moving area light). A moving light and a static occluder over a receiver with a fold, and
+# nothing more: a grey floor (y = 0); a step block x in [-2, 0], y in [0, 0.4], z in [-1.5, 1.5], whose
+# +X face (x = 0) is the fold's vertical part, floor -> face -> top; a thin slab (0.3 x 0.04 x 1 m,
+# x in [0.45, 0.75], y in [1.2, 1.24], z in [-0.5, 0.5]) on two thin posts, static; and one 0.2 x 0.2 m
+# quad light facing down at y = 2.8, z = 0, whose x is LINEAR -0.6 -> 3.4 over t = 0-2 s (2 m/s).
+# The light moves along +X, so the slab's shadow moves along -X, across the fold: floor, face, top.
+#
+# Where the shadow falls. The line from the light's centre l = (x_l, 2.8, 0) through the slab's bottom
+# centre b = (0.6, 1.2, 0) is p(t) = l + t (b - l) (the shadow ray's own line, Eq. 3's l -> b); it reaches
+# height y at t = (2.8 - y) / 1.6: the floor at t = 1.75, the step's top at t = 1.5. So the shadow's
+# centre is at x = 0.6 + 0.75 (0.6 - x_l) on the floor and x = 0.6 + 0.5 (0.6 - x_l) on the top, and it
+# meets the face x = 0 where x_l = t 0.6 / (t - 1): at its foot (y = 0) for x_l = 1.4 (t = 1.0 s, frame 30)
+# and at its top edge (y = 0.4) for x_l = 1.8 (t = 1.2 s, frame 36). Before frame 30 the centre lies on
+# the floor (at x = 1.5 at frame 0), after frame 36 on the top (x = -0.8 at frame 60); in between it runs
+# down the face, 2 m/s on average. The whole shadow (the slab's edges x = 0.45 and 0.75 by the same
+# lines) first touches the face's foot at x_l = 1.05 (t = 0.825 s) and leaves its top edge at x_l = 2.25
+# (t = 1.425 s).
+# Its umbra stays wider than the light's penumbra: on the floor the slab's 0.3 m width becomes 0.525 m,
+# of which 0.2 (1.2 / 1.6) = 0.15 m on each side is penumbra (the light's width times b / a).
+# The shadow moves 0.75 * 2 = 1.5 m/s on the floor, 1 m/s on the top. The posts' thin shadows cross the
+# fold too, at |z| >= 0.43 (the lines from the light at z = 0 spread them outwards), away from z = 0.
+#
+# The light's strength. Straight below it, at 2.8 m, the small quad gives E = L A cos_l cos_r / d^2 =
+# L 0.04 / 7.84 = 0.0051 L; L = 500 gives E = 2.55, and the 0.7 grey floor reflects 0.7 E / pi = 0.57. On
+# the step's top (d = 2.4 m, reflectance 0.75) that is 0.83; where the shadow starts, 2.1 m aside
+# (d^2 = 12.25, both cosines 0.8), the floor reflects 0.23.
+#
+# The camera is static at (4, 2.4, 0.8), looking at (0.35, 0.2, -0.1), 30 degrees down, yfov 40
+# degrees: it sees the floor in front of the step, the face, the top and the slab from above, and only
+# below its own height (30 > 20 degrees, so even the top corners of the view point downwards), so never
+# the light at y = 2.8. The floor (x, z in [-20, 20]) fills the view: the top corners' rays reach it
+# about 15 m away.
+# At 640x360 the shadow's centre moves from about (345, 287) px at frame 0 to (285, 111) at frame 60, and
+# the face is 38 px high where it crosses it (z = 0).
+
+SHADOW_FOLD_TIMES = [0.0, 2.0]
+SHADOW_FOLD_LIGHT_X = [-0.6, 3.4]
+SHADOW_FOLD_LIGHT_Y = 2.8
+SHADOW_FOLD_LIGHT_STRENGTH = 500.0
+SHADOW_FOLD_STEP = ((-2.0, 0.0, -1.5), (0.0, 0.4, 1.5))     # the block: lo and hi corners
+SHADOW_FOLD_SLAB = ((0.45, 1.2, -0.5), (0.75, 1.24, 0.5))  # the occluder
+SHADOW_FOLD_POST_Z = 0.45                                  # the posts under the slab's ends, x = 0.6
+
+
+def shadow_fold():
+    gltf = gltf_writer.GltfBuilder("shadow-fold")
+    grey = gltf.add_material("grey", (0.7, 0.7, 0.7, 1.0))
+    step_material = gltf.add_material("step", WHITE)
+    wood = gltf.add_material("wood", (0.55, 0.4, 0.25, 1.0))
+    light = gltf.add_material("light", WHITE, emissive=(1.0, 1.0, 1.0),
+                              emissive_strength=SHADOW_FOLD_LIGHT_STRENGTH)
+
+    floor = quad((0, 0, 0), (20, 0, 0), (0, 0, -20))  # cross(x, -z) = +Y
+    gltf.add_node("floor", mesh=add_geometry(gltf, "floor", floor, grey))
+    gltf.add_node("step", mesh=add_geometry(gltf, "step", box(*SHADOW_FOLD_STEP), step_material))
+    gltf.add_node("slab", mesh=add_geometry(gltf, "slab", box(*SHADOW_FOLD_SLAB), wood))
+    # The posts (4 cm square) end inside the slab, at y = 1.22, so no face of a post meets a face of the slab.
+    post = add_geometry(gltf, "post", box((-0.02, 0, -0.02), (0.02, 1.22, 0.02)), wood)
+    for name, z in (("post_back", -SHADOW_FOLD_POST_Z), ("post_front", SHADOW_FOLD_POST_Z)):
+        gltf.add_node(name, mesh=post, translation=(0.6, 0, z))
+
+    panel = quad((0, 0, 0), (0.1, 0, 0), (0, 0, 0.1))  # cross(x, z) = -Y: facing down
+    keys = [(x, SHADOW_FOLD_LIGHT_Y, 0.0) for x in SHADOW_FOLD_LIGHT_X]
+    node = gltf.add_node("light", mesh=add_geometry(gltf, "light", panel, light), translation=keys[0])
+    gltf.add_animation("light_slide", [(node, "translation", SHADOW_FOLD_TIMES, keys, "LINEAR")])
+
+    camera = gltf.add_camera("camera", yfov=math.radians(40), znear=0.05)
+    eye = (4.0, 2.4, 0.8)
+    gltf.add_node("camera", camera=camera, translation=eye, rotation=look_at(eye, (0.35, 0.2, -0.1)))
+    return gltf
+
+
 SCENES = {"cornell": cornell, "pillars": pillars, "flicker": flicker, "falling-light": falling_light,
-          "glossy": glossy, "fence": fence, "occlusion": occlusion, "static": static}
+          "glossy": glossy, "fence": fence, "occlusion": occlusion, "static": static,
+          "shadow-fold": shadow_fold}
 
 
 def main():

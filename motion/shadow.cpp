@@ -127,9 +127,12 @@ void write_shadow_motion_layers(const Scene& scene, const FrameGeometry& g, Fram
   UIntPlane& valid = frame.add_uint("motion.shadow.valid");
   for (size_t i = 0; i < m.size(); ++i) motion[i] = m[i].motion, valid.data[i] = m[i].valid ? 1u : 0u;
   frame.set_vec2("motion.shadow", motion);
-  const std::vector<glm::vec2> splat =
+  const std::vector<SplatMotion> splat =
       splat_shadow_motion(m, frame.get_vec2("motion"), g.vis.depth, g.vis.width, g.vis.height, kShadowSplatSize);
-  frame.set_vec2("motion.shadow_splat", splat);
+  std::vector<glm::vec2> splat_motion(splat.size());
+  UIntPlane& landed = frame.add_uint("motion.shadow_splat.valid");
+  for (size_t i = 0; i < splat.size(); ++i) splat_motion[i] = splat[i].motion, landed.data[i] = splat[i].landed ? 1u : 0u;
+  frame.set_vec2("motion.shadow_splat", splat_motion);
 }
 
 }  // namespace rtdr

@@ -81,7 +81,7 @@ std::vector<ShadowRay> shadow_rays(const Scene& scene, const FrameGeometry& geom
 std::vector<ShadowMotion> shadow_motion(const Scene& scene, const FrameGeometry& geometry, const Frame& frame);
 
 // Adds motion.shadow.X, motion.shadow.Y and motion.shadow.valid (uint 0/1) to a frame that holds the path.*
-// layers (trace_layers), then the splatted field motion.shadow_splat.X/Y (motion/shadow_splat.h).
+// layers (trace_layers), then the splatted field motion.shadow_splat.X/Y and .valid (motion/shadow_splat.h).
 void write_shadow_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

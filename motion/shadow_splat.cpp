@@ -10,11 +10,11 @@
 
 namespace rtdr {
 
-glm::vec2 splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
+SplatMotion splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
                                     const std::vector<float>& depth, int width, int height, int size, int x, int y) {
   const size_t p = size_t(y) * size_t(width) + size_t(x);
   const float z_p = depth[p];
-  if (z_p <= 0.0f) return glm::vec2(0.0f);  // no surface
+  if (z_p <= 0.0f) return {};  // no surface: (0, 0)
   const int radius = size / 2;
   glm::vec2 sum(0.0f);
   int count = 0;  // splats landed: every weight is 1 (a box)
@@ -29,10 +29,11 @@ glm::vec2 splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, con
     }
   }
   // "weight averaged into the center of each filter" [TRMV21 Sec. 4.1]; nothing landed: the surface motion.
-  return count > 0 ? sum / float(count) : surface_motion[p];
+  if (count == 0) return {surface_motion[p], false};
+  return {sum / float(count), true};
 }
 
-std::vector<glm::vec2> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
+std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
                                            const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,
                                            int width, int height, int size) {
   const size_t pixels = size_t(width) * size_t(height);
@@ -42,7 +43,7 @@ std::vector<glm::vec2> splat_shadow_motion(const std::vector<ShadowMotion>& shad
                 std::to_string(width) + "x" + std::to_string(height));
   if (size < 1 || size % 2 == 0)
     throw Error("splat_shadow_motion: the window's side must be odd and at least 1, not " + std::to_string(size));
-  std::vector<glm::vec2> out(pixels);
+  std::vector<SplatMotion> out(pixels);
   parallel_rows(height, [&](int y) {
     for (int x = 0; x < width; ++x)
       out[size_t(y) * size_t(width) + size_t(x)] =

@@ -3,7 +3,8 @@
 // Pass: splat_shadow_motion(shadow motion, surface motion, depth) -> motion.shadow_splat per pixel.
 //   in:  m^V and its validity per pixel (motion/shadow.h, [TRMV21 Eq. 3]), the back-projected surface motion
 //        (`motion`, [TRMV21 Eq. 1]) and the linear view depth of the visibility buffer
-//   out: one motion vector per pixel: the mean of the valid m^V that land on it, else the surface motion
+//   out: one motion vector per pixel: the mean of the valid m^V that land on it, else the surface motion; and
+//        whether any landed (motion.shadow_splat.valid)
 //
 // Only pixels whose shadow ray was blocked have an Eq. 3 vector, yet the pixels around a shadow need it as much:
 // a lit pixel that the shadow has just left holds last frame's shadow in its history. TRMV21 Sec. 4.1 "interprets
@@ -31,12 +32,17 @@ namespace rtdr {
 inline constexpr int kShadowSplatSize = 9;
 inline constexpr float kShadowSplatDepthRelative = 0.1f;
 
+struct SplatMotion {
+  glm::vec2 motion{0.0f};
+  bool landed = false;  // a valid m^V landed: `motion` is their mean, not the surface motion
+};
+
 // The golden per-pixel function: the splatted motion at pixel (x, y). Planes are row-major, width x height.
-glm::vec2 splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
+SplatMotion splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
                                     const std::vector<float>& depth, int width, int height, int size, int x, int y);
 
 // Every pixel's splatted motion, row-major. `size` is the window's side, odd and at least 1.
-std::vector<glm::vec2> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
+std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
                                            const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,
                                            int width, int height, int size);
 

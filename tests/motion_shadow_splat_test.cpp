@@ -20,17 +20,24 @@ struct Planes {
   std::vector<glm::vec2> surface = std::vector<glm::vec2>(size_t(kW * kH), glm::vec2(0.25f, -0.5f));
   std::vector<float> depth = std::vector<float>(size_t(kW * kH), 5.0f);  // a flat wall, 5 m away
   void set(int x, int y, glm::vec2 m) { shadow[size_t(y * kW + x)] = {m, true}; }
-  std::vector<glm::vec2> splat(int size = kShadowSplatSize) const {
-    return splat_shadow_motion(shadow, surface, depth, kW, kH, size);
+  // The splatted motion of every pixel; `landed` counts the pixels a valid vector landed on.
+  std::vector<glm::vec2> splat(int size = kShadowSplatSize, int* landed = nullptr) const {
+    std::vector<glm::vec2> motion;
+    for (const SplatMotion& m : splat_shadow_motion(shadow, surface, depth, kW, kH, size)) {
+      motion.push_back(m.motion);
+      if (landed) *landed += m.landed;
+    }
+    return motion;
   }
 };
 
 }  // namespace
 
-TEST_CASE("one in-shadow pixel's vector lands on exactly the 9x9 window around it; elsewhere the surface motion") {
+TEST_CASE("one in-shadow pixel's vector lands on exactly the 9x9 window around it, elsewhere the surface motion") {
   Planes p;
   p.set(10, 8, {3.0f, -2.0f});
-  const std::vector<glm::vec2> out = p.splat();
+  int landed_flags = 0;
+  const std::vector<glm::vec2> out = p.splat(kShadowSplatSize, &landed_flags);
   int landed = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
@@ -40,6 +47,7 @@ TEST_CASE("one in-shadow pixel's vector lands on exactly the 9x9 window around i
       landed += inside;
     }
   CHECK(landed == 81);
+  CHECK(landed_flags == 81);
 }
 
 TEST_CASE("overlapping splats average with equal weights, and a window clipped by the image still averages") {
@@ -65,7 +73,7 @@ TEST_CASE("a splat lands only on the same surface (depths within 10 %), and neve
   CHECK(out[size_t(9 * kW + 10)] == glm::vec2(0.0f));
 }
 
-TEST_CASE("a 1x1 window keeps each pixel's own vector; an even or empty window, or planes of another size, throw") {
+TEST_CASE("a 1x1 window keeps each pixel's own vector, and an even or empty window, or planes of another size, throw") {
   Planes p;
   p.set(5, 5, {3.0f, -2.0f});
   const std::vector<glm::vec2> out = p.splat(1);

@@ -143,7 +143,7 @@ TEST_CASE("pillars: motion.shadow equals the closed form of the ray's line, whil
   CHECK(sum_shadow / checked > 0.5);     // its shadows do: about t |d| / pixel size
 }
 
-TEST_CASE("cornell, nothing moves: where valid, motion.shadow equals the surface motion; lit pixels are invalid") {
+TEST_CASE("cornell, nothing moves: where valid, motion.shadow equals the surface motion, and lit pixels are invalid") {
   const Scene scene = load_scene("cornell");
   const RenderedFrame r = render(scene, 3, 64, 64);
   const std::vector<glm::vec2> shadow = r.frame.get_vec2("motion.shadow");
@@ -165,4 +165,34 @@ TEST_CASE("cornell, nothing moves: where valid, motion.shadow equals the surface
   INFO("valid in-shadow pixels: " << in_shadow);
   REQUIRE(in_shadow > 50);
   CHECK(max_difference < 1e-3);
+}
+
+TEST_CASE("shadow-fold: with the light moving and the slab still, motion.shadow follows the light's previous line") {
+  const Scene scene = load_scene("shadow-fold");
+  const RenderedFrame r = render(scene, 20, 160, 90);
+  const FrameGeometry& g = r.geometry;
+  // The light slides along x at 2 m/s (scenes/README.md): e = (2/30, 0, 0) m per frame; the slab stands still.
+  const glm::vec3 e(2.0f / 30.0f, 0.0f, 0.0f);
+  const std::vector<glm::vec2> shadow = r.frame.get_vec2("motion.shadow");
+  const std::vector<glm::vec3> light = r.frame.get_vec3("path.light"), blocker = r.frame.get_vec3("path.blocker");
+  const std::vector<glm::vec3> position = r.frame.get_vec3("position");
+  const UIntPlane& valid = r.frame.uint_channel("motion.shadow.valid");
+  int checked = 0;
+  double max_error = 0.0;
+  for (size_t i = 0; i < valid.data.size(); ++i) {
+    if (!valid.data[i] || std::abs(position[i].y) > 1e-4f) continue;  // in shadow, on the floor y = 0
+    // Now: s = l + t (b - l) on y = 0. Before: the light was at l' = l - e, and the line l' -> b meets y = 0 at
+    // s' = l' + t' (b - l'), t' = l'.y / (l'.y - b.y).
+    const float t = light[i].y / (light[i].y - blocker[i].y);
+    const glm::vec3 s = light[i] + t * (blocker[i] - light[i]);
+    const glm::vec3 l_prev = light[i] - e;
+    const float t_prev = l_prev.y / (l_prev.y - blocker[i].y);
+    const glm::vec3 s_prev = l_prev + t_prev * (blocker[i] - l_prev);
+    const glm::vec2 expected = glm::vec2(g.prev_view.project(s_prev)) - glm::vec2(g.view.project(s));
+    max_error = std::max(max_error, double(glm::length(shadow[i] - expected)));
+    ++checked;
+  }
+  INFO("floor pixels in the slab's shadow: " << checked);
+  REQUIRE(checked > 20);
+  CHECK(max_error < 1e-3);
 }

@@ -47,9 +47,9 @@ struct Pixel {
   int y;
 };
 Pixel parse_pixel(const std::string& text, const std::string& flag);
-// Every parameter table a method reads, as flags: SVGF's rows as --<name>, A-SVGF's, EAW's, tone mapping's and
-// TAA's as --asvgf-<name>, --eaw-<name>, --tonemap-<name> and --taa-<name>, each name with hyphens for underscores
-// (--atrous-levels, --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the
+// Every parameter table a method reads, as flags: SVGF's rows as --<name>, A-SVGF's, EAW's, tone mapping's, TAA's
+// and TRMV's as --asvgf-<name>, --eaw-<name>, --tonemap-<name>, --taa-<name> and --trmv-<name>, each name with
+// hyphens for underscores (--atrous-levels, --taa-clip-history). Each flag's help is its row's source; the value is range-checked when the
 // method is made. A flag not given takes the default of the method named by `method` once the command line is
 // parsed (filters/method.h's method_defaults: asvgf's alpha is 0.1, not the 0.2 that --help shows for svgf).
 void add_method_flags(CLI::App* sub, MethodParams& params, const std::string& method);
@@ -60,7 +60,8 @@ void add_method_flags(CLI::App* sub, MethodParams& params, const std::string& me
   T(asvgf, "asvgf-", RTDR_ASVGF_PARAMS, "A-SVGF parameters (method asvgf)")      \
   T(eaw, "eaw-", RTDR_EAW_PARAMS, "EAW parameters (methods eaw, eaw-accum)")     \
   T(tonemap, "tonemap-", RTDR_TONEMAP_PARAMS, "Tone mapping parameters")        \
-  T(taa, "taa-", RTDR_TAA_PARAMS, "TAA parameters")
+  T(taa, "taa-", RTDR_TAA_PARAMS, "TAA parameters")                            \
+  T(trmv, "trmv-", RTDR_TRMV_PARAMS, "TRMV parameters (method trmv)")
 // A-SVGF's gradient sample parameters (trace/gradients.h) as --gradient-<name>, for rtdr render --gradients.
 void add_gradient_flags(CLI::App* sub, GradientParams& params);
 // The flag of row `name` of a table whose flags start with `prefix` ("", "eaw-", "tonemap-", "taa-", "gradient-").

@@ -103,6 +103,7 @@ MethodSpec parse_method_spec(const std::string& text) {
   const MethodParams defaults = method_defaults(spec.name);  // throws for an unknown name, listing the known ones
   spec.svgf = defaults.svgf;
   spec.asvgf = defaults.asvgf;
+  spec.trmv = defaults.trmv;
   for (size_t i = 1; i < parts.size(); ++i) {
     const size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq), value_text = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
@@ -115,12 +116,14 @@ MethodSpec parse_method_spec(const std::string& text) {
       if (value_text != "fp32" && value_text != "fp16")
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
+    } else if (key == "motion" && (value_text == "traditional" || value_text == "shadow")) {
+      spec.trmv.motion = value_text == "shadow" ? 1 : 0;  // trmv_params.h's motion row, by name
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
                !(set_param(spec.svgf, key, value) || set_param(spec.asvgf, key, value) ||
-                 set_gradient_row(spec, key, value))) {
+                 set_param(spec.trmv, key, value) || set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
-                  "' is not parameter=value of svgf_params.h, asvgf_params.h or gradient_<row> of trace/gradients.h, "
-                  "backend=cpu|vulkan or illumination=fp32|fp16");
+                  "' is not parameter=value of svgf_params.h, asvgf_params.h, trmv_params.h or gradient_<row> of "
+                  "trace/gradients.h, motion=traditional|shadow, backend=cpu|vulkan or illumination=fp32|fp16");
     }
     spec.params += (spec.params.empty() ? "" : ":") + parts[i];
   }
@@ -128,12 +131,14 @@ MethodSpec parse_method_spec(const std::string& text) {
     throw Error("method spec '" + text + "': illumination=" + spec.illumination + " needs backend=vulkan");
   validate(spec.svgf);
   validate(spec.asvgf);
+  validate(spec.trmv);
   return spec;
 }
 
 MethodParams spec_params(const MethodSpec& spec) {
   MethodParams params(spec.svgf);
   params.asvgf = spec.asvgf;
+  params.trmv = spec.trmv;
   return params;
 }
 

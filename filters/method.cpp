@@ -3,8 +3,10 @@
 
 #include "core/error.h"
 #include "filters/svgf/svgf.h"
+#include "filters/trmv/trmv.h"
 
 #include <algorithm>
+#include <chrono>
 #include <functional>
 
 namespace rtdr {
@@ -56,7 +58,18 @@ const std::vector<MethodEntry>& registry() {
   return methods;
 }
 
+// TRMV is not one of SVGF's pipelines: its own class (filters/trmv/trmv.h), after the registry's methods.
+constexpr const char* kTrmv = "trmv";
+
 }  // namespace
+
+double Method::time_pass(const std::string& pass, const std::function<void()>& run) {
+  const auto start = std::chrono::steady_clock::now();
+  run();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  times_[pass] += ms;
+  return ms;
+}
 
 void fill_input_defaults(Frame& frame, const InputChannels& channels) {
   for (const auto& [name, value] : channels.defaults)
@@ -78,6 +91,7 @@ bool Method::reads_gradient_samples() const {
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
   for (const MethodEntry& m : registry()) names.push_back(m.name);
+  names.push_back(kTrmv);
   return names;
 }
 
@@ -92,13 +106,14 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     options.taa_params = params.taa;
     return options;
   }
+  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines and has no Vulkan port yet");
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);
 }
 
 MethodParams method_defaults(const std::string& name) {
-  method_options(name, {});  // throws for an unknown name, listing the known ones
+  if (name != kTrmv) method_options(name, {});  // throws for an unknown name, listing the known ones
   MethodParams params;
   for (const MethodEntry& m : registry())
     if (name == m.name) m.defaults(params);
@@ -108,6 +123,7 @@ MethodParams method_defaults(const std::string& name) {
 std::unique_ptr<Method> make_method(const std::string& name) { return make_method(name, method_defaults(name)); }
 
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params) {
+  if (name == kTrmv) return std::make_unique<TrmvFilter>(params);
   return std::make_unique<SvgfFilter>(method_options(name, params));
 }
 

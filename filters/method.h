@@ -16,7 +16,9 @@
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
+#include "filters/trmv/trmv_params.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -68,16 +70,19 @@ class Method {
   bool reads_gradient_samples() const;
 
  protected:
+  // Runs `run` and adds its wall time to times_[pass]; returns the milliseconds.
+  double time_pass(const std::string& pass, const std::function<void()>& run);
   PassTimes times_;
 };
 
 // "svgf" (the pipeline of [SVGF17 Sec. 3]), "accum" (its temporal accumulation only, [SVGF17 Sec. 4.1]), "eaw"
 // (Dammertz 2010, no temporal reuse), "eaw-accum"
-// (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated). Throws rtdr::Error for an
-// unknown name, listing the known ones.
+// (our temporal accumulation, then EAW), "none" (the 1-spp input, remodulated), "trmv" (Zeng et al. 2021's
+// filter-then-accumulate with reliable motion vectors, filters/trmv/trmv.h). Throws rtdr::Error for an unknown
+// name, listing the known ones.
 // Every parameter table a method reads, each at its declared defaults unless set: SVGF's (svgf_params.h), A-SVGF's
-// (asvgf_params.h), EAW's (eaw.h), tone mapping's (tonemap.h) and TAA's (taa.h). Made from SvgfParams alone, the
-// others keep their defaults.
+// (asvgf_params.h), EAW's (eaw.h), tone mapping's (tonemap.h), TAA's (taa.h) and TRMV's (trmv_params.h). Made from
+// SvgfParams alone, the others keep their defaults.
 struct MethodParams {
   MethodParams(const SvgfParams& svgf_params = {}) : svgf(svgf_params) {}  // NOLINT: implicit on purpose
   SvgfParams svgf;
@@ -85,6 +90,7 @@ struct MethodParams {
   EawParams eaw;
   TonemapParams tonemap;
   TaaParams taa;
+  TrmvParams trmv;
 };
 
 // A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf:
@@ -95,7 +101,8 @@ MethodParams method_defaults(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
-// method, gpu/svgf_vulkan.h). Throws like make_method().
+// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines and
+// has no Vulkan port yet.
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
 std::vector<std::string> method_names();

@@ -37,7 +37,7 @@ std::set<std::string> documented_channels(const std::vector<std::string>& sectio
   std::set<std::string> names;
   std::istringstream doc(read_file(fs::path(RTDR_SOURCE_DIR) / "docs/buffers.md"));
   const std::regex row("^\\| (`[^|]+) \\|");
-  const std::regex name("`([a-z.]+)\\.([A-Za-z_/]+)`");
+  const std::regex name("`([a-z_.]+)\\.([A-Za-z_/]+)`");
   bool inside = false;
   for (std::string line; std::getline(doc, line);) {
     if (line.starts_with("## "))

@@ -157,7 +157,7 @@ TEST_CASE("an unknown method name throws rtdr::Error listing the known ones") {
   CHECK_THROWS_AS(make_method("svfg"), Error);
   CHECK_THROWS_WITH(make_method("svfg"), Catch::Contains("svfg"));
   for (const std::string& name : method_names()) CHECK_THROWS_WITH(make_method(""), Catch::Contains(name));
-  CHECK(method_names() == std::vector<std::string>{"svgf", "asvgf", "a-eaw", "accum", "eaw", "eaw-accum", "none"});
+  CHECK(method_names() == std::vector<std::string>{"svgf", "asvgf", "a-eaw", "accum", "eaw", "eaw-accum", "none", "trmv"});
 }
 
 TEST_CASE("asvgf refuses frames rendered without gradient samples, naming what they lack") {

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <chrono>
 
 namespace rtdr {
 
@@ -29,14 +28,6 @@ void SvgfFilter::reset() {
   indirect_ = Stream();
   prev_surface_ = SurfacePlanes();
   taa_history_ = RgbPlane();
-}
-
-double SvgfFilter::time_pass(const std::string& pass, const std::function<void()>& run) {
-  const auto start = std::chrono::steady_clock::now();
-  run();
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  times_[pass] += ms;
-  return ms;
 }
 
 const RgbPlane& SvgfFilter::Stream::level_input_color(int level) const {

@@ -97,7 +97,6 @@ class SvgfFilter : public Method {
   void adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name);
   // What the temporal pass of stream `s` reads of A-SVGF (null without it).
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
-  double time_pass(const std::string& pass, const std::function<void()>& run);
   const Stream& stream(const std::string& name) const;
 
   SvgfOptions options_;

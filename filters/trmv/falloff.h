@@ -1,0 +1,89 @@
+// TRMV's falloff heuristic for non-planar shadow receivers [TRMV21 Eq. 4].
+//
+// Pass: trmv_falloff_pass(receiver, shadow motion, previous positions, params) -> alpha^V per pixel.
+//   in:  s_i and n(s_i), the receiver's point and normal per pixel (`position`, `geonormal`); the shadow motion
+//        vectors m^V with their validity (x^V_{i-1} = pixel centre + m^V, TRMV21 Eq. 3); the previous frame's
+//        `position` and `id.mesh`; alpha and the falloff's std (trmv_params.h)
+//   out: theta, the angle between n(s_i) and the direction s_i -> s^V_{i-1}, where s^V_{i-1} is the previous
+//        frame's `position` at the pixel nearest to x^V_{i-1}, and
+//          alpha^V = 1 - G(theta - pi/2; 0, sigma) (1 - alpha)                          [TRMV21 Eq. 4]
+//        with G(x; 0, sigma) = exp(-x^2 / (2 sigma^2)), a Gaussian whose PEAK is 1 ("with its peak value
+//        normalized to 1"), not its integral. alpha^V replaces alpha in Eq. 2 for the visibility.
+//
+// The shadow vector assumes the shadow point stays on the receiver's plane (Eq. 3 intersects that plane). Where
+// the point it finds in the previous frame, s^V_{i-1}, lies on that plane, the direction s_i -> s^V_{i-1} is
+// perpendicular to n(s_i), theta = pi/2, G = 1 and alpha^V = alpha: the vector is trusted as much as any. Where
+// the receiver folds or curves, s^V_{i-1} leaves the plane, theta moves away from pi/2, and alpha^V grows
+// towards 1: the history is trusted less, the spatial filter more.
+//
+// Units: theta and sigma are in radians. The paper writes G(theta - pi/2; 0, 0.1) next to "when theta is close
+// to 90 degrees" without a unit for 0.1. theta - pi/2 is written in radians, so 0.1 is too: 0.1 rad = 5.7
+// degrees, G = e^{-1/2} = 0.61 at that tilt. Read as 0.1 degree, G would fall to e^{-1/2} at 0.0017 rad and to
+// 1e-4 at 0.0075 rad (0.43 degree): every receiver that is not exactly planar to float precision (interpolated
+// positions, a plane seen at a grazing angle, a vector off by a fraction of a pixel) would get alpha^V ~ 1, no
+// history at all, which would reject almost every tilt and undo the shadow vectors.
+//
+// Choices the paper leaves open (filters/trmv/README.md, "Deviations and choices"):
+// - s^V_{i-1} is read at the nearest pixel to x^V_{i-1} (floor), not bilinearly: a bilinear mix of positions
+//   across a fold is a point on neither face.
+// - A static shadow (s^V_{i-1} = s_i, the direction undefined): theta = pi/2 when
+//   |s^V_{i-1} - s_i| < 1e-6 (1 + |s_i|), a relative tolerance of float precision.
+// - No Eq. 4 evidence (the pixel sees no surface, the vector is invalid, x^V_{i-1} is off the previous image or
+//   sees no surface there, first frame): alpha^V = alpha, so w_A = 0 in Eq. 7. Whether such a pixel keeps any
+//   history is the temporal pass's decision (alpha = 1 for an invalid vector, temporal.h), made from the same
+//   validity plane; the two passes stay separate and agree.
+// - Moving receivers: the paper transforms n(s_i) with the receiver's motion ("inverse transformed if the shadow
+//   receiver moves over time"). This pass takes s_i and n(s_i) as given: the caller passes them carried back to
+//   the previous frame (T^{-1}) for a moving receiver, or the current planes, which are exact for a static one.
+#pragma once
+
+#include "filters/image.h"
+#include "filters/probe.h"
+#include "filters/trmv/temporal.h"
+#include "filters/trmv/trmv_params.h"
+
+#include <glm/glm.hpp>
+
+namespace rtdr {
+
+// The receiver of each pixel's shadow: s_i and n(s_i), and id.mesh (which pixels see a surface).
+struct TrmvReceiver {
+  RgbPlane position;  // s_i, world space
+  RgbPlane normal;    // n(s_i), unit (the geometric normal, the plane Eq. 3 intersects)
+  UIntPlane mesh;
+};
+
+// The previous frame's surface points: `position` and `id.mesh`. Empty (width 0): the first frame.
+struct TrmvPreviousPositions {
+  RgbPlane position;
+  UIntPlane mesh;
+};
+
+struct TrmvFalloffPixel {
+  float theta = 0.0f;   // radians; pi/2 where there is no evidence
+  float alpha_v = 0.0f; // alpha^V [TRMV21 Eq. 4]
+};
+
+struct TrmvFalloffOutput {
+  FloatPlane theta;
+  FloatPlane alpha_v;
+};
+
+// G(x; 0, sigma) = exp(-x^2 / (2 sigma^2)), peak 1 [TRMV21 Eq. 4].
+float trmv_falloff_gaussian(float x, float sigma);
+// alpha^V = 1 - G(theta - pi/2; 0, sigma) (1 - alpha) [TRMV21 Eq. 4].
+float trmv_falloff_alpha(float theta, float alpha, float sigma);
+// theta, the angle between n(s_i) and s_i -> s^V_{i-1}, in [0, pi]; pi/2 for the degenerate static shadow.
+float trmv_falloff_theta(glm::vec3 s_i, glm::vec3 n_s_i, glm::vec3 s_v_prev);
+
+// The golden per-pixel function.
+TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMotion& shadow,
+                                    const TrmvPreviousPositions& prev, const TrmvParams& params, int x, int y,
+                                    Probe* probe = nullptr);
+
+// trmv_falloff_pixel at every pixel (parallel over rows, deterministic). Throws rtdr::Error when the planes'
+// sizes disagree.
+TrmvFalloffOutput trmv_falloff_pass(const TrmvReceiver& receiver, const TrmvMotion& shadow,
+                                    const TrmvPreviousPositions& prev, const TrmvParams& params);
+
+}  // namespace rtdr

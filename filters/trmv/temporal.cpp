@@ -1,0 +1,150 @@
+// TRMV's temporal blend [TRMV21 Eq. 2] and history clamp [TRMV21 Sec. 5]. What the pass computes, its inputs,
+// outputs and choices: filters/trmv/temporal.h.
+#include "filters/trmv/temporal.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace rtdr {
+namespace {
+
+template <class P>
+bool sized(const P& p, int w, int h) {
+  return p.width == w && p.height == h;
+}
+
+void check_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion, const TrmvHistory& prev,
+                 const FloatPlane& alpha) {
+  const int w = filtered.width, h = filtered.height;
+  const bool valid_ok = motion.valid.width == 0 || sized(motion.valid, w, h);
+  const bool alpha_ok = alpha.width == 0 || sized(alpha, w, h);
+  if (!sized(mesh, w, h) || !sized(motion.motion, w, h) || !valid_ok || !alpha_ok)
+    throw Error("trmv temporal pass: the mesh, motion, validity and alpha planes are not all " + std::to_string(w) +
+                "x" + std::to_string(h) + " like c~");
+  if (prev.color.width != 0 && !sized(prev.mesh, prev.color.width, prev.color.height))
+    throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
+}
+
+// No history: alpha = 1 and cbar_i = c~_i; the fetched and clamped histories are 0 (temporal.h).
+TrmvTemporalPixel without_history(glm::vec3 c, Probe* probe) {
+  TrmvTemporalPixel out;
+  out.color = c;
+  out.alpha = 1.0f;
+  note_group(probe, "blend");
+  note(probe, "alpha", out.alpha, "no history: alpha = 1");
+  note(probe, "cbar_i = c~_i", out.color, "[TRMV21 Eq. 2] with alpha = 1");
+  return out;
+}
+
+}  // namespace
+
+bool trmv_fetch_history(const TrmvHistory& prev, glm::vec2 p_prev, glm::vec3& out, Probe* probe) {
+  note_group(probe, "fetch");
+  note(probe, "x_{i-1}", p_prev, "[TRMV21 Eq. 2] pixel centre + m");
+  const int w = prev.color.width, h = prev.color.height;
+  // More than a pixel off the previous image no tap can be inside (false for NaN too); this also keeps
+  // floor(p_prev) within int range for far-off vectors such as kMotionBehindCamera.
+  if (!(p_prev.x > -1.0f && p_prev.y > -1.0f && p_prev.x < float(w) + 1.0f && p_prev.y < float(h) + 1.0f)) return false;
+  // Pixel centres sit at integer + 0.5: the four centres around p_prev start at floor(p_prev - 0.5), and f is
+  // where p_prev lies in their square, the bilinear parameters.
+  const glm::vec2 s = p_prev - 0.5f;
+  const glm::ivec2 q00 = glm::ivec2(glm::floor(s));
+  const glm::vec2 f = s - glm::floor(s);
+  float sum_w = 0.0f;
+  glm::vec3 sum_wc(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const glm::ivec2 d(k & 1, k >> 1);  // (0, 0), (1, 0), (0, 1), (1, 1)
+    const glm::ivec2 q = q00 + d;
+    // Outside the previous image, or no surface there: dropped.
+    if (!inside(prev.color, q.x, q.y) || prev.mesh.at(q.x, q.y) == kInvalidId) continue;
+    // Bilinear weight: (1 - f) towards the near centre, f towards the far one, on each axis.
+    const float w_q = (d.x ? f.x : 1.0f - f.x) * (d.y ? f.y : 1.0f - f.y);
+    sum_w += w_q;
+    sum_wc += w_q * prev.color.at(q.x, q.y);
+  }
+  note(probe, "sum of kept bilinear weights", sum_w);
+  if (!(sum_w > 0.0f)) return false;
+  // cbar_{i-1}(x_{i-1}) = sum_q w_q cbar_{i-1}(q) / sum_q w_q over the kept taps.
+  out = sum_wc / sum_w;
+  note(probe, "cbar_{i-1}(x_{i-1})", out, "[TRMV21 Eq. 2] bilinear, renormalised");
+  return true;
+}
+
+glm::vec3 trmv_clamp_history(glm::vec3 history, const RgbPlane& filtered, const UIntPlane& mesh, float gamma,
+                             int radius, int x, int y, Probe* probe) {
+  note_group(probe, "clamp");
+  note(probe, "gamma", gamma, "[TRMV21 Sec. 5] 3: TRMV, 1: Salvi's, 0: off");
+  if (!(gamma > 0.0f)) return history;  // gamma = 0: no clamp ("Trad. (No clamp)")
+  // The mean and the second raw moment of c~ over the window's pixels that see a surface, per channel.
+  glm::vec3 sum(0.0f), sum_sq(0.0f);
+  int n = 0;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int qx = x + dx, qy = y + dy;
+      if (!inside(filtered, qx, qy) || mesh.at(qx, qy) == kInvalidId) continue;
+      const glm::vec3 c = filtered.at(qx, qy);
+      sum += c;
+      sum_sq += c * c;
+      ++n;
+    }
+  const glm::vec3 mu = sum / float(n);  // n >= 1: the centre sees a surface
+  // sigma = sqrt(E[c^2] - mu^2), the population standard deviation (rounding may make the difference < 0).
+  const glm::vec3 sigma = glm::sqrt(glm::max(sum_sq / float(n) - mu * mu, glm::vec3(0.0f)));
+  note(probe, "window pixels", float(n));
+  note(probe, "mu", mu, "[TRMV21 Sec. 5] mean of c~ over the window");
+  note(probe, "sigma", sigma, "[TRMV21 Sec. 5] std of c~ over the window");
+  // cbar*_{i-1} = clamp(cbar_{i-1}, mu - gamma sigma, mu + gamma sigma), per channel [TRMV21 Sec. 5].
+  const glm::vec3 clamped = glm::clamp(history, mu - gamma * sigma, mu + gamma * sigma);
+  note(probe, "cbar*_{i-1}", clamped, "[TRMV21 Sec. 5] clamped to mu +- gamma sigma");
+  return clamped;
+}
+
+TrmvTemporalPixel trmv_temporal_pixel(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
+                                      const TrmvHistory& prev, const FloatPlane& alpha, const TrmvParams& params,
+                                      int x, int y, Probe* probe) {
+  note_group(probe, "input");
+  const glm::vec3 c = filtered.at(x, y);
+  note(probe, "c~_i", c, "[TRMV21 Eq. 2] spatially filtered");
+  const bool covered = mesh.at(x, y) != kInvalidId;
+  const bool first_frame = prev.color.width == 0;
+  const bool valid = motion.valid.width == 0 || motion.valid.at(x, y) != 0;
+  note(probe, "covered", float(covered));
+  note(probe, "first frame", float(first_frame));
+  note(probe, "vector valid", float(valid));
+  if (!covered || first_frame || !valid) return without_history(c, probe);
+  // x_{i-1} = x_i + m(x_i): where this pixel's content was in the previous frame [TRMV21 Eq. 1].
+  const glm::vec2 p_prev = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + motion.motion.at(x, y);
+  TrmvTemporalPixel out;
+  if (!trmv_fetch_history(prev, p_prev, out.fetched, probe)) return without_history(c, probe);
+  out.clamped = trmv_clamp_history(out.fetched, filtered, mesh, params.clamp_gamma, params.clamp_radius, x, y, probe);
+  note_group(probe, "blend");
+  out.alpha = alpha.width == 0 ? params.alpha : alpha.at(x, y);
+  note(probe, "alpha", out.alpha, "[TRMV21 Eq. 2] alpha, or alpha^V [TRMV21 Eq. 4]");
+  // cbar_i(x_i) = alpha c~_i(x_i) + (1 - alpha) cbar*_{i-1}(x_{i-1})  [TRMV21 Eq. 2], the history clamped.
+  out.color = out.alpha * c + (1.0f - out.alpha) * out.clamped;
+  note(probe, "cbar_i", out.color, "[TRMV21 Eq. 2]");
+  return out;
+}
+
+TrmvTemporalOutput trmv_temporal_pass(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
+                                      const TrmvHistory& prev, const FloatPlane& alpha, const TrmvParams& params) {
+  check_sizes(filtered, mesh, motion, prev, alpha);
+  const int w = filtered.width, h = filtered.height;
+  TrmvTemporalOutput out{RgbPlane(w, h), RgbPlane(w, h), RgbPlane(w, h), FloatPlane(w, h)};
+  parallel_rows(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const TrmvTemporalPixel p = trmv_temporal_pixel(filtered, mesh, motion, prev, alpha, params, x, y);
+      out.color.at(x, y) = p.color;
+      out.fetched.at(x, y) = p.fetched;
+      out.clamped.at(x, y) = p.clamped;
+      out.alpha.at(x, y) = p.alpha;
+    }
+  });
+  return out;
+}
+
+}  // namespace rtdr

@@ -1,0 +1,41 @@
+// Every tunable of TRMV's filter side [TRMV21 Sec. 3-5], declared once (filters/params.h explains the X-macro).
+// The edge-stopping sigmas and epsilon that guide the joint-bilateral filters (w_z, w_n) are SVGF's
+// (svgf_params.h): the paper names its guides nowhere, and SVGF's functions are called as they are.
+//
+// X(type, name, default, min, max, symbol, source)
+#define RTDR_TRMV_PARAMS(X)                                                                                       \
+  X(float, alpha, 0.1f, 0.0f, 1.0f, "alpha", "TRMV21 Sec. 5: 'alpha = 0.1 in our case' (Eq. 2's blend weight)")  \
+  X(float, falloff_sigma, 0.1f, 1e-3f, 3.2f, "sigma",                                                             \
+    "TRMV21 Eq. 4: G(theta - pi/2; 0, 0.1), in radians (filters/trmv/falloff.h says why)")                         \
+  X(float, clamp_gamma, 3.0f, 0.0f, 1e3f, "gamma",                                                                \
+    "TRMV21 Sec. 5: history clamped to mu +- 3 sigma; 1 = Salvi's baseline; 0 = no clamp")                         \
+  X(int, clamp_radius, 1, 0, 16, "", "TRMV21 Sec. 5 'each x_i's neighborhood': a (2r+1)^2 window of c~, 3x3")     \
+  X(int, spatial_radius, 15, 0, 64, "", "TRMV21 Sec. 5: 'a separable 31x31 joint bilateral filter' for shadows")  \
+  X(float, spatial_sigma, 5.0f, 0.0f, 1e3f, "",                                                                   \
+    "spatial std of that filter, px: not given; radius / 3 puts +-3 std inside the 31x31 window")                 \
+  X(int, cleanup_size, 9, 1, 63, "", "TRMV21 Sec. 5: the clean-up is 'a fixed size 9x9' (odd side)")              \
+  X(float, cleanup_sigma_max, 5.0f, 0.0f, 1e3f, "", "TRMV21 Sec. 5: clean-up std min(w_A + w_C, 5), px")          \
+  X(float, cleanup_eps, 0.001f, 1e-9f, 1.0f, "epsilon", "TRMV21 Eq. 8: 'epsilon is set to 0.001'")               \
+  X(int, history_after_cleanup, 0, 0, 1, "",                                                                      \
+    "TRMV21 Sec. 5 leaves it open: 0 keeps cbar_i before the clean-up as next frame's history, 1 after it")        \
+  X(int, motion, 1, 0, 1, "",                                                                                     \
+    "TRMV21 Sec. 4.1: the visibility's history follows 0 the surface motion (Eq. 1, 'Trad.'), 1 the shadow's (Eq. 3)")
+
+#pragma once
+#include "filters/params.h"
+
+namespace rtdr {
+
+struct TrmvParams {
+  RTDR_TRMV_PARAMS(RTDR_PARAM_FIELD)
+};
+
+std::vector<ParamInfo> trmv_param_table();
+std::vector<double> param_values(const TrmvParams& params);
+// Throws rtdr::Error naming the first parameter outside its range, or a window side (cleanup_size)
+// that is even: a window centred on the pixel has an odd side.
+void validate(const TrmvParams& params);
+// Sets the parameter called `key`; false when there is no such row.
+bool set_param(TrmvParams& params, const std::string& key, double value);
+
+}  // namespace rtdr

@@ -1,0 +1,96 @@
+// Tests of filters/trmv/trmv.cpp: the trmv method, its passes chained as trmv.h says, against the passes called
+// one by one; the shadow and the surface motion on a still scene; determinism.
+#include "filters/trmv/trmv.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "filters/svgf/modulate.h"
+#include "filters/svgf/tonemap.h"
+#include "filters/trmv/spatial.h"
+#include "scenes/gltf_loader.h"
+#include "trace/render_frame.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+using namespace rtdr;
+
+namespace {
+
+constexpr int kW = 48, kH = 27;
+
+std::vector<Frame> cornell_frames(int count) {
+  const Scene scene = load_scene("cornell");
+  std::vector<Frame> frames;
+  for (int f = 0; f < count; ++f) frames.push_back(render_frame(scene, f, kW, kH, RenderSettings{}));
+  return frames;
+}
+
+double max_difference(const RgbPlane& a, const RgbPlane& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.data.size(); ++i)
+    d = std::max(d, double(glm::length(a.data[i] - b.data[i])));
+  return d;
+}
+
+struct ThreadCountGuard {
+  ~ThreadCountGuard() { set_thread_count(0); }
+};
+
+}  // namespace
+
+TEST_CASE("trmv's first frame is the spatial filter of visibility and indirect light, remodulated: no history yet") {
+  const Frame in = cornell_frames(1)[0];
+  const MethodParams params = method_defaults("trmv");
+  const std::unique_ptr<Method> method = make_method("trmv");
+  const Frame out = method->filter(in);
+  // By hand: no history gives alpha = 1, and no clamp and alpha^V = alpha give the clean-up std 0, the identity.
+  const SurfacePlanes s = SurfacePlanes::from_frame(in);
+  const FloatPlane v = in.float_channel("direct.visibility");
+  RgbPlane v_rgb(kW, kH);
+  for (size_t i = 0; i < v.data.size(); ++i) v_rgb.data[i] = glm::vec3(v.data[i]);
+  const RgbPlane v_filtered = trmv_spatial_pass(v_rgb, s, params.trmv, params.svgf);
+  const RgbPlane indirect = trmv_spatial_pass(rgb_plane(in, "indirect"), s, params.trmv, params.svgf);
+  RgbPlane direct = rgb_plane(in, "direct.shading");
+  for (size_t i = 0; i < direct.data.size(); ++i) direct.data[i] *= v_filtered.data[i].x;  // shading x Vbar
+  const RgbPlane expected = remodulate(direct, indirect, rgb_plane(in, "albedo"), rgb_plane(in, "emission"));
+  CHECK(max_difference(rgb_plane(out, "color"), expected) == 0.0);
+  CHECK(max_difference(rgb_plane(out, "display"), tonemap(expected, params.tonemap)) == 0.0);
+}
+
+TEST_CASE("on a still scene trmv along the shadow motion and along the surface motion agree") {
+  const std::vector<Frame> frames = cornell_frames(4);
+  MethodParams shadow = method_defaults("trmv"), traditional = shadow;
+  traditional.trmv.motion = 0;
+  const std::unique_ptr<Method> a = make_method("trmv", shadow), b = make_method("trmv", traditional);
+  double worst = 0.0;
+  for (const Frame& f : frames) worst = std::max(worst, max_difference(rgb_plane(a->filter(f), "color"),
+                                                                        rgb_plane(b->filter(f), "color")));
+  // The shadow motion equals the surface motion to float precision there (tests/motion_shadow_test.cpp), and
+  // alpha^V = alpha exactly (a static shadow, theta = pi/2): only the bilinear weights' last bits differ.
+  INFO("largest colour difference over 4 frames: " << worst);
+  CHECK(worst < 1e-4);
+}
+
+TEST_CASE("trmv's output is the same, bit for bit, for any thread count, and reset() forgets the history") {
+  ThreadCountGuard guard;
+  const std::vector<Frame> frames = cornell_frames(3);
+  std::vector<RgbPlane> colours[2];
+  for (int threads : {1, 0}) {
+    set_thread_count(threads);
+    const std::unique_ptr<Method> m = make_method("trmv");
+    for (const Frame& f : frames) colours[threads == 0].push_back(rgb_plane(m->filter(f), "color"));
+  }
+  for (size_t k = 0; k < frames.size(); ++k) CHECK(max_difference(colours[0][k], colours[1][k]) == 0.0);
+
+  const std::unique_ptr<Method> m = make_method("trmv");
+  const RgbPlane first = rgb_plane(m->filter(frames[0]), "color");
+  m->filter(frames[1]);
+  m->reset();
+  CHECK(max_difference(rgb_plane(m->filter(frames[0]), "color"), first) == 0.0);
+  CHECK_THROWS_AS(m->probe("temporal", 1, 1, "indirect", 0), Error);
+}

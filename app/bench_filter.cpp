@@ -71,11 +71,15 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     const int warmup = std::max(5, o.warmup);
     std::vector<Frame> frames;
     // With gradient samples (trace/gradients.h) when the method reads them (asvgf), each frame from the one before.
-    const bool gradients = make_method(o.method, o.params)->reads_gradient_samples();
+    // And with TRMV's shading term when it reads that (trmv).
+    const std::unique_ptr<Method> method = make_method(o.method, o.params);
+    const bool gradients = method->reads_gradient_samples();
+    RenderSettings settings;
+    if (method->reads_shading_term()) settings.trace.shading_samples = kTrmvShadingSamples;
     for (int f = 0; f < warmup + o.runs; ++f)
-      frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, {}, {},
+      frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, settings, {},
                                                                frames.empty() ? nullptr : &frames.back())
-                                 : render_frame(scene, f, size.width, size.height, {}));
+                                 : render_frame(scene, f, size.width, size.height, settings));
     std::map<std::string, std::map<std::string, double>> medians;  // backend -> pass -> ms
     std::vector<std::pair<std::string, double>> commands;           // the Vulkan frame's commands, in order
     std::string devices;

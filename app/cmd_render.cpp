@@ -123,6 +123,10 @@ Command add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-bounces", o->settings.trace.max_bounces, "indirect bounces after the primary hit")
       ->check(CLI::Range(0, 1024))->capture_default_str();
+  sub->add_option("--shading-samples", o->settings.trace.shading_samples,
+                  "TRMV's input: add direct.shading, the unshadowed direct light from this many light samples per "
+                  "pixel (trace/shading.h; 64 is what rtdr eval uses); 0 leaves it out")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
   sub->add_flag("--gradients", o->gradients,
                 "A-SVGF's input: merge gradient samples carried from the previous frame (trace/gradients.h)");
   add_gradient_flags(sub, o->gradient);

@@ -210,9 +210,13 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   bool gradients = c.gradients;
   for (size_t m = 0; m < methods.size(); ++m)
     gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
-  if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), c.gradient);
+  // With TRMV's shading term when a method reads it (trmv): then every method's input carries it.
+  RenderSettings input = input_settings(c);
+  for (const std::unique_ptr<Method>& m : methods)
+    if (m->reads_shading_term()) input.trace.shading_samples = kTrmvShadingSamples;
+  if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
-    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input_settings(c)));
+    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input));
     tick();
     const Frame ref = cache.get(f, c.width, c.height, reference_settings(c));
     ref_colour.push_back(frame_colour(ref));
@@ -229,7 +233,7 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
     const GradientParams own = spec_gradient(spec, c.gradient);
     if (!spec.gradient_rows.empty() && param_values(own) != param_values(c.gradient) && !own_inputs.count(param_values(own)))
       own_inputs[param_values(own)] =
-          cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input_settings(c), own);
+          cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, own);
   }
 
   EvalResult result;

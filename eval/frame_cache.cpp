@@ -13,7 +13,8 @@ namespace rtdr {
 namespace {
 
 // Bump when the meaning of rendered layers changes, so old cache entries are not reused.
-// 2: frames gained TRMV's layers (motion.shadow, motion.shadow_splat, direct.shading).
+// 2: frames gained TRMV's shadow motion (motion.shadow, motion.shadow_splat); direct.shading, when rendered, is in
+// the key ("-shading64").
 constexpr int kCacheVersion = 2;
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): a small, well-spread hash of the scene file's bytes.
@@ -40,19 +41,20 @@ std::string FrameCache::path(int frame_index, int width, int height, const Rende
                              const GradientParams* gradients) const {
   // Gradient frames differ from plain ones at their gradient pixels: their own directory, named by every
   // parameter, e.g. "-gradients-stratum_size3-selection0-seed_reuse1-seed_chains1-light_cdf0".
-  std::string gradient_key;
+  std::string key_suffix;
   if (gradients) {
-    gradient_key = "-gradients";
+    key_suffix = "-gradients";
     const std::vector<ParamInfo> table = gradient_param_table();
     const std::vector<double> values = param_values(*gradients);
-    for (size_t k = 0; k < table.size(); ++k) gradient_key += "-" + table[k].name + std::to_string(int64_t(values[k]));
+    for (size_t k = 0; k < table.size(); ++k) key_suffix += "-" + table[k].name + std::to_string(int64_t(values[k]));
   }
   char name[160];
   std::snprintf(name, sizeof name, "%s-%016llx-v%d/%dx%d-spp%d-seed%u-b%d", scene_.name.c_str(),
                 (unsigned long long)scene_hash_, kCacheVersion, width, height, s.spp, s.seed, s.trace.max_bounces);
+  if (s.trace.shading_samples > 0) key_suffix = "-shading" + std::to_string(s.trace.shading_samples) + key_suffix;
   char file[32];
   std::snprintf(file, sizeof file, "frame_%04d.exr", frame_index);
-  return (std::filesystem::path(dir_) / (name + gradient_key) / file).string();
+  return (std::filesystem::path(dir_) / (name + key_suffix) / file).string();
 }
 
 void FrameCache::store(const std::string& file, const Frame& frame) const {

@@ -88,6 +88,11 @@ bool Method::reads_gradient_samples() const {
   return std::find(uints.begin(), uints.end(), "gradient.source") != uints.end();
 }
 
+bool Method::reads_shading_term() const {
+  const std::vector<std::string> floats = inputs().floats;
+  return std::find(floats.begin(), floats.end(), "direct.shading.R") != floats.end();
+}
+
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
   for (const MethodEntry& m : registry()) names.push_back(m.name);

@@ -68,6 +68,8 @@ class Method {
   const PassTimes& pass_times() const { return times_; }
   // Whether its input must carry A-SVGF's gradient samples (it reads gradient.source, trace/gradients.h).
   bool reads_gradient_samples() const;
+  // Whether its input must carry TRMV's shading term (it reads direct.shading, trace/shading.h).
+  bool reads_shading_term() const;
 
  protected:
   // Runs `run` and adds its wall time to times_[pass]; returns the milliseconds.

@@ -27,32 +27,21 @@ bool intersect_shadow_line(const glm::vec3& l, const glm::vec3& b, const glm::ve
 
 glm::vec3 transform_point(const glm::mat4& m, const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
 
-// A normal carried by the point transform m: the inverse transpose of its linear part.
-glm::vec3 transform_normal(const glm::mat4& m, const glm::vec3& n) {
-  return glm::normalize(glm::transpose(glm::inverse(glm::mat3(m))) * n);
-}
-
-// The receiver's face normal at `pose`, from the triangle's world-space corners (unit, either orientation).
-glm::vec3 face_normal(const Scene& scene, const ScenePose& pose, uint32_t instance, uint32_t triangle) {
-  const Mesh& mesh = scene.meshes[size_t(scene.instances[instance].mesh)];
-  const glm::uvec3& tri = mesh.triangles[triangle];
-  const glm::mat4& m = pose.instance_to_world[instance];
-  const glm::vec3 p0 = transform_point(m, mesh.positions[tri[0]]);
-  const glm::vec3 p1 = transform_point(m, mesh.positions[tri[1]]);
-  const glm::vec3 p2 = transform_point(m, mesh.positions[tri[2]]);
-  return glm::normalize(glm::cross(p1 - p0, p2 - p0));
-}
-
 }  // namespace
 
-std::vector<glm::mat4> instance_to_previous(const ScenePose& pose, const ScenePose& prev_pose) {
-  std::vector<glm::mat4> out(pose.instance_to_world.size());
-  for (size_t k = 0; k < out.size(); ++k)
-    out[k] = prev_pose.instance_to_world[k] * glm::inverse(pose.instance_to_world[k]);  // M_k(t_{i-1}) M_k(t_i)^{-1}
+InstanceMotion instance_motion(const glm::mat4& to_previous) {
+  // A normal is carried by the inverse transpose of the point transform's linear part.
+  return {to_previous, glm::transpose(glm::inverse(glm::mat3(to_previous)))};
+}
+
+std::vector<InstanceMotion> instance_to_previous(const ScenePose& pose, const ScenePose& prev_pose) {
+  std::vector<InstanceMotion> out(pose.instance_to_world.size());
+  for (size_t k = 0; k < out.size(); ++k)  // M_k(t_{i-1}) M_k(t_i)^{-1}
+    out[k] = instance_motion(prev_pose.instance_to_world[k] * glm::inverse(pose.instance_to_world[k]));
   return out;
 }
 
-ShadowMotion shadow_motion_pixel(const ShadowRay& r, const std::vector<glm::mat4>& to_previous, const View& view,
+ShadowMotion shadow_motion_pixel(const ShadowRay& r, const std::vector<InstanceMotion>& to_previous, const View& view,
                                  const View& prev_view) {
   ShadowMotion out;
   if (r.receiver_instance == kInvalidId || r.blocker_instance == kInvalidId || r.light_instance == kInvalidId)
@@ -62,13 +51,11 @@ ShadowMotion shadow_motion_pixel(const ShadowRay& r, const std::vector<glm::mat4
   if (!intersect_shadow_line(r.light, r.blocker, r.receiver, r.receiver_normal, s_hat)) return out;
 
   // T^{-1} l_i, T^{-1} b_i and T^{-1} plane(s_i), each with its own instance's motion [TRMV21 Eq. 3].
-  const glm::mat4& T_light = to_previous[r.light_instance];
-  const glm::mat4& T_blocker = to_previous[r.blocker_instance];
-  const glm::mat4& T_receiver = to_previous[r.receiver_instance];
-  const glm::vec3 l_prev = transform_point(T_light, r.light);
-  const glm::vec3 b_prev = transform_point(T_blocker, r.blocker);
-  const glm::vec3 s_prev = transform_point(T_receiver, r.receiver);
-  const glm::vec3 n_prev = transform_normal(T_receiver, r.receiver_normal);
+  const InstanceMotion& T_receiver = to_previous[r.receiver_instance];
+  const glm::vec3 l_prev = transform_point(to_previous[r.light_instance].to_previous, r.light);
+  const glm::vec3 b_prev = transform_point(to_previous[r.blocker_instance].to_previous, r.blocker);
+  const glm::vec3 s_prev = transform_point(T_receiver.to_previous, r.receiver);
+  const glm::vec3 n_prev = T_receiver.normal_to_previous * r.receiver_normal;  // unit or not: only its direction counts
   // intersect[T^{-1} l_i -> T^{-1} b_i ; T^{-1} plane(s_i)]: the shadow point in the previous frame.
   glm::vec3 s_hat_prev;
   if (!intersect_shadow_line(l_prev, b_prev, s_prev, n_prev, s_hat_prev)) return out;
@@ -82,47 +69,49 @@ ShadowMotion shadow_motion_pixel(const ShadowRay& r, const std::vector<glm::mat4
   return out;
 }
 
-std::vector<ShadowRay> shadow_rays(const Scene& scene, const FrameGeometry& g, const Frame& frame) {
-  const VisibilityBuffer& vis = g.vis;
-  if (frame.width() != vis.width || frame.height() != vis.height)
-    throw Error("shadow_rays: a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
-                " frame for a " + std::to_string(vis.width) + "x" + std::to_string(vis.height) + " geometry");
-  const std::vector<glm::vec3> light = frame.get_vec3("path.light");
-  const std::vector<glm::vec3> blocker = frame.get_vec3("path.blocker");
-  const UIntPlane& light_id = frame.uint_channel("path.light.instance");
-  const UIntPlane& blocker_id = frame.uint_channel("path.blocker.instance");
-  std::vector<ShadowRay> rays(light.size());
-  parallel_rows(vis.height, [&](int y) {
-    for (int x = 0; x < vis.width; ++x) {
-      const size_t i = vis.index(x, y);
-      const SurfaceSample s = vis.sample(x, y);
-      if (!s.valid()) continue;
-      ShadowRay& r = rays[i];
-      r.light = light[i], r.light_instance = light_id.data[i];
-      r.blocker = blocker[i], r.blocker_instance = blocker_id.data[i];
-      r.receiver = world_point(scene, g.pose, s);
-      r.receiver_normal = face_normal(scene, g.pose, s.instance, s.triangle);
-      r.receiver_instance = s.instance;
-    }
-  });
-  return rays;
+ShadowRayLayers::ShadowRayLayers(const Frame& frame)
+    : light_id_(&frame.uint_channel("path.light.instance")), blocker_id_(&frame.uint_channel("path.blocker.instance")),
+      receiver_id_(&frame.uint_channel("id.instance")) {
+  static const char* const kAxes[3] = {"X", "Y", "Z"};
+  for (int a = 0; a < 3; ++a) {
+    light_[a] = &frame.float_channel(std::string("path.light.") + kAxes[a]);
+    blocker_[a] = &frame.float_channel(std::string("path.blocker.") + kAxes[a]);
+    position_[a] = &frame.float_channel(std::string("position.") + kAxes[a]);  // s_i (raster/gbuffer.cpp)
+    normal_[a] = &frame.float_channel(std::string("geonormal.") + kAxes[a]);   // its face normal
+  }
 }
 
-std::vector<ShadowMotion> shadow_motion(const Scene& scene, const FrameGeometry& g, const Frame& frame) {
-  const std::vector<ShadowRay> rays = shadow_rays(scene, g, frame);
-  const std::vector<glm::mat4> to_previous = instance_to_previous(g.pose, g.prev_pose);
-  std::vector<ShadowMotion> out(rays.size());
+ShadowRay ShadowRayLayers::at(size_t i) const {
+  ShadowRay r;
+  if (blocker_id_->data[i] == kInvalidId) return r;  // lit, or no surface: no shadow, no vector
+  const auto vec3_at = [i](const FloatPlane* const (&p)[3]) {
+    return glm::vec3(p[0]->data[i], p[1]->data[i], p[2]->data[i]);
+  };
+  r.light = vec3_at(light_), r.blocker = vec3_at(blocker_);
+  r.receiver = vec3_at(position_), r.receiver_normal = vec3_at(normal_);
+  r.light_instance = light_id_->data[i], r.blocker_instance = blocker_id_->data[i];
+  r.receiver_instance = receiver_id_->data[i];
+  return r;
+}
+
+std::vector<ShadowMotion> shadow_motion(const FrameGeometry& g, const Frame& frame) {
+  if (frame.width() != g.vis.width || frame.height() != g.vis.height)
+    throw Error("shadow_motion: a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
+                " frame for a " + std::to_string(g.vis.width) + "x" + std::to_string(g.vis.height) + " geometry");
+  const ShadowRayLayers rays(frame);
+  const std::vector<InstanceMotion> to_previous = instance_to_previous(g.pose, g.prev_pose);
+  std::vector<ShadowMotion> out(size_t(frame.width()) * size_t(frame.height()));
   parallel_rows(g.vis.height, [&](int y) {
     for (int x = 0; x < g.vis.width; ++x) {
       const size_t i = g.vis.index(x, y);
-      out[i] = shadow_motion_pixel(rays[i], to_previous, g.view, g.prev_view);
+      out[i] = shadow_motion_pixel(rays.at(i), to_previous, g.view, g.prev_view);
     }
   });
   return out;
 }
 
-void write_shadow_motion_layers(const Scene& scene, const FrameGeometry& g, Frame& frame) {
-  const std::vector<ShadowMotion> m = shadow_motion(scene, g, frame);
+void write_shadow_motion_layers(const FrameGeometry& g, Frame& frame) {
+  const std::vector<ShadowMotion> m = shadow_motion(g, frame);
   std::vector<glm::vec2> motion(m.size());
   UIntPlane& valid = frame.add_uint("motion.shadow.valid");
   for (size_t i = 0; i < m.size(); ++i) motion[i] = m[i].motion, valid.data[i] = m[i].valid ? 1u : 0u;

@@ -1,6 +1,6 @@
 // Shadow motion vectors [TRMV21 Eq. 3]: where the shadow a pixel lies in was in the previous frame.
 //
-// Pass: shadow_motion(scene, geometry, shadow rays) -> motion.shadow per pixel.
+// Pass: shadow_motion(geometry, frame) -> motion.shadow per pixel.
 //   in:  per pixel the primary vertex's shadow ray as the path tracer recorded it (path.light, path.blocker and
 //        their instances, trace/path_tracer.h), the visibility buffer (the receiver), the poses and Views of
 //        this frame and the previous one
@@ -52,9 +52,16 @@ namespace rtdr {
 // A line parallel to the plane within this cosine (about 6e-5 degrees) has no intersection worth using.
 inline constexpr float kShadowParallelCosine = 1e-6f;
 
-// T^{-1} of [TRMV21 Eq. 3] for every instance: M_k(t_{i-1}) M_k(t_i)^{-1}, which carries a world point on instance
-// k at this frame's time to where it was in the previous frame.
-std::vector<glm::mat4> instance_to_previous(const ScenePose& pose, const ScenePose& prev_pose);
+// T^{-1} of [TRMV21 Eq. 3] for one instance k: M_k(t_{i-1}) M_k(t_i)^{-1}, which carries a world point on it at
+// this frame's time to where it was in the previous frame, and the matrix that carries its normals (the inverse
+// transpose of the linear part), computed once per instance and frame rather than once per pixel.
+struct InstanceMotion {
+  glm::mat4 to_previous{1.0f};
+  glm::mat3 normal_to_previous{1.0f};
+};
+InstanceMotion instance_motion(const glm::mat4& to_previous);
+// Every instance's, from the two frames' poses.
+std::vector<InstanceMotion> instance_to_previous(const ScenePose& pose, const ScenePose& prev_pose);
 
 // One pixel's shadow ray as the path tracer recorded it (the path.* layers), and its receiver.
 struct ShadowRay {
@@ -71,17 +78,27 @@ struct ShadowMotion {
 };
 
 // The golden per-pixel function [TRMV21 Eq. 3]. `to_previous` is instance_to_previous(pose, prev_pose).
-ShadowMotion shadow_motion_pixel(const ShadowRay& ray, const std::vector<glm::mat4>& to_previous, const View& view,
-                                 const View& prev_view);
+ShadowMotion shadow_motion_pixel(const ShadowRay& ray, const std::vector<InstanceMotion>& to_previous,
+                                 const View& view, const View& prev_view);
 
-// The shadow ray of every pixel, from the frame's path.* layers and the geometry's visibility buffer.
-std::vector<ShadowRay> shadow_rays(const Scene& scene, const FrameGeometry& geometry, const Frame& frame);
+// The channels of a frame that hold every pixel's shadow ray: its path.* layers and its G-buffer (`position`,
+// `geonormal`, `id.instance`). Read in place, not copied: at 1080p a copy costs more than Eq. 3 itself.
+class ShadowRayLayers {
+ public:
+  explicit ShadowRayLayers(const Frame& frame);  // throws rtdr::Error naming a missing channel
+  // Pixel i's shadow ray; a pixel whose ray was not blocked (or that sees no surface) gets one with no receiver.
+  ShadowRay at(size_t i) const;
+
+ private:
+  const FloatPlane *light_[3], *blocker_[3], *position_[3], *normal_[3];
+  const UIntPlane *light_id_, *blocker_id_, *receiver_id_;
+};
 
 // Every pixel's shadow motion, row-major.
-std::vector<ShadowMotion> shadow_motion(const Scene& scene, const FrameGeometry& geometry, const Frame& frame);
+std::vector<ShadowMotion> shadow_motion(const FrameGeometry& geometry, const Frame& frame);
 
 // Adds motion.shadow.X, motion.shadow.Y and motion.shadow.valid (uint 0/1) to a frame that holds the path.*
 // layers (trace_layers), then the splatted field motion.shadow_splat.X/Y and .valid (motion/shadow_splat.h).
-void write_shadow_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
+void write_shadow_motion_layers(const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

@@ -83,3 +83,28 @@ TEST_CASE("a 1x1 window keeps each pixel's own vector, and an even or empty wind
   CHECK_THROWS_AS(p.splat(0), Error);
   CHECK_THROWS_AS(splat_shadow_motion(p.shadow, p.surface, std::vector<float>(3), kW, kH, 9), Error);
 }
+
+TEST_CASE("the frame loop equals the per-pixel gather at every pixel, windows without a valid vector included") {
+  Planes p;
+  // A scattered pattern: valid vectors on some pixels, another surface on others, background on a few.
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const int h = (x * 7 + y * 13) % 29;
+      if (h < 2) p.set(x, y, {float(h) - 0.5f, float(x % 3)});
+      if (h == 5) p.depth[size_t(y * kW + x)] = 9.0f;
+      if (h == 11) p.depth[size_t(y * kW + x)] = 0.0f;
+      p.surface[size_t(y * kW + x)] = {float(x) * 0.25f, float(y) * -0.5f};
+    }
+  p.shadow[size_t(3 * kW + 3)] = {};  // and a corner far from the rest: some windows hold no valid vector
+  const std::vector<SplatMotion> frame = splat_shadow_motion(p.shadow, p.surface, p.depth, kW, kH, 5);
+  int empty_windows = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const SplatMotion one = splat_shadow_motion_pixel(p.shadow, p.surface, p.depth, kW, kH, 5, x, y);
+      const SplatMotion& got = frame[size_t(y * kW + x)];
+      CHECK(got.motion == one.motion);
+      CHECK(got.landed == one.landed);
+      empty_windows += !one.landed;
+    }
+  CHECK(empty_windows > 0);
+}

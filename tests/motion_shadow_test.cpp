@@ -46,16 +46,16 @@ ShadowRay ray_over_floor() {
   return r;
 }
 
-std::vector<glm::mat4> identities(int n) { return std::vector<glm::mat4>(size_t(n), glm::mat4(1.0f)); }
+std::vector<InstanceMotion> identities(int n) { return std::vector<InstanceMotion>(size_t(n)); }
 
 }  // namespace
 
 TEST_CASE("a moving light: the previous shadow point is where the light's previous line meets the plane") {
   const View view = fixture_view();
   const ShadowRay r = ray_over_floor();
-  std::vector<glm::mat4> to_previous = identities(3);
+  std::vector<InstanceMotion> to_previous = identities(3);
   const glm::vec3 e(0.3f, 0.0f, 0.1f);  // the light moved by e since the previous frame: T^{-1} l = l - e
-  to_previous[0] = glm::translate(glm::mat4(1.0f), -e);
+  to_previous[0] = instance_motion(glm::translate(glm::mat4(1.0f), -e));
   const ShadowMotion m = shadow_motion_pixel(r, to_previous, view, view);
   REQUIRE(m.valid);
   // Closed form: l' = l - e, the line l' + t (b - l') meets y = -2 at t = (l'.y + 2) / (l'.y - b.y) = 2.
@@ -70,9 +70,9 @@ TEST_CASE("a moving light: the previous shadow point is where the light's previo
 TEST_CASE("a moving blocker: the shadow moves t times as far as the blocker, t the receiver's place on the line") {
   const View view = fixture_view();
   const ShadowRay r = ray_over_floor();
-  std::vector<glm::mat4> to_previous = identities(3);
+  std::vector<InstanceMotion> to_previous = identities(3);
   const glm::vec3 d(0.1f, 0.0f, 0.0f);  // the blocker moved by d: T^{-1} b = b - d
-  to_previous[1] = glm::translate(glm::mat4(1.0f), -d);
+  to_previous[1] = instance_motion(glm::translate(glm::mat4(1.0f), -d));
   const ShadowMotion m = shadow_motion_pixel(r, to_previous, view, view);
   REQUIRE(m.valid);
   const glm::vec3 s_prev = r.receiver - 2.0f * d;  // t = 2: the shadow moved 2 d
@@ -82,7 +82,7 @@ TEST_CASE("a moving blocker: the shadow moves t times as far as the blocker, t t
 
 TEST_CASE("shadow motion is invalid without a blocker, parallel to the plane, before the blocker, or behind the camera") {
   const View view = fixture_view();
-  const std::vector<glm::mat4> still = identities(3);
+  const std::vector<InstanceMotion> still = identities(3);
   CHECK(shadow_motion_pixel(ray_over_floor(), still, view, view).valid);
 
   ShadowRay lit = ray_over_floor();
@@ -98,8 +98,8 @@ TEST_CASE("shadow motion is invalid without a blocker, parallel to the plane, be
   in_front.receiver = {0.1f, 1.0f, -6.1f};  // between the light and the blocker: t = 0.5
   CHECK_FALSE(shadow_motion_pixel(in_front, still, view, view).valid);
 
-  std::vector<glm::mat4> behind = identities(3);
-  behind[2] = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 10.0f));  // the floor was behind the camera
+  std::vector<InstanceMotion> behind = identities(3);
+  behind[2] = instance_motion(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 10.0f)));  // behind the camera
   behind[1] = behind[0] = behind[2];                                            // and so were light and blocker
   const ShadowMotion m = shadow_motion_pixel(ray_over_floor(), behind, view, view);
   CHECK_FALSE(m.valid);

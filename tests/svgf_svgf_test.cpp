@@ -53,7 +53,7 @@ const Frame& rendered(const std::string& scene, int index, int w, int h, uint32_
 }
 
 // Frame `index` of a shipped scene with A-SVGF's gradient samples (trace/gradients.h), each frame from the one
-// before, kept like rendered(): input every method reads, asvgf included.
+// before, and TRMV's shading term, kept like rendered(): input every method reads, asvgf and trmv included.
 const Frame& rendered_with_gradients(const std::string& scene, int index, int w, int h) {
   using Key = std::tuple<std::string, int, int, int>;
   static std::map<Key, Frame> frames;
@@ -61,7 +61,9 @@ const Frame& rendered_with_gradients(const std::string& scene, int index, int w,
   auto it = frames.find(key);
   if (it == frames.end()) {
     const Frame* prev = index > 0 ? &rendered_with_gradients(scene, index - 1, w, h) : nullptr;
-    it = frames.emplace(key, render_frame_with_gradients(shipped_scene(scene), index, w, h, {}, {}, prev)).first;
+    RenderSettings settings;
+    settings.trace.shading_samples = kTrmvShadingSamples;
+    it = frames.emplace(key, render_frame_with_gradients(shipped_scene(scene), index, w, h, settings, {}, prev)).first;
   }
   return it->second;
 }

@@ -225,6 +225,39 @@ TEST_CASE("LightSet samples points uniformly inside the chosen triangle") {
   }
 }
 
+// sample_reusing(u) is sample(u.x, (r, u.y)) with r = (u.x - cdf before the light) / the light's pmf: the same
+// light, and a point placed by u.x's position inside that light's share, rescaled to [0, 1). Compared with the
+// test's own pmf (in double), so only float rounding of the cdf separates them: 1e-5 of the lamps' metre scale.
+TEST_CASE("LightSet::sample_reusing chooses as sample does and reuses u.x inside the light's share") {
+  const rtdr::Scene scene = two_lamps_and_a_floor();
+  const rtdr::LightSet lights(scene, scene.pose(0.5));
+  REQUIRE(lights.lights().size() == 4);
+  std::array<double, 4> smallest_r, largest_r;
+  smallest_r.fill(1.0);
+  largest_r.fill(0.0);
+  constexpr int kSteps = 4096;
+  for (int k = 0; k < kSteps; ++k) {
+    const glm::vec2 u((float(k) + 0.5f) / kSteps, 0.3f);
+    const rtdr::LightSample reused = lights.sample_reusing(u);
+    const size_t l = size_t(reused.light);
+    REQUIRE(l < 4);
+    double before = 0.0;
+    for (size_t m = 0; m < l; ++m) before += kPmf[m];
+    const double r = (double(u.x) - before) / kPmf[l];
+    INFO("u.x = " << u.x << ", light " << l << ", r = " << r);
+    CHECK(reused.light == lights.sample(u.x, glm::vec2(0.5f)).light);
+    CHECK(glm::length(reused.position - lights.sample(u.x, glm::vec2(float(r), u.y)).position) < 1e-5f);
+    smallest_r[l] = std::min(smallest_r[l], r);
+    largest_r[l] = std::max(largest_r[l], r);
+  }
+  for (size_t l = 0; l < 4; ++l) {  // every light's share is rescaled onto the whole of [0, 1)
+    INFO("light " << l);
+    CHECK(smallest_r[l] < 0.01);
+    CHECK(largest_r[l] > 0.99);
+    CHECK(largest_r[l] < 1.0);
+  }
+}
+
 TEST_CASE("LightSet::find maps (instance, triangle) to the light, and anything else to -1") {
   const rtdr::Scene scene = two_lamps_and_a_floor();
   const rtdr::LightSet lights(scene, scene.pose(0.5));

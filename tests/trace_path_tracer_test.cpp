@@ -104,8 +104,6 @@ AlbedoRange albedo_range(const SurfaceBsdf& m) {
   return r;
 }
 
-double grey(const glm::vec3& c) { return (double(c.r) + double(c.g) + double(c.b)) / 3.0; }
-
 // ---------------------------------------------------------------------------------------------------------
 // The furnace: a closed sphere that emits Le inwards everywhere and reflects with one material.
 
@@ -298,66 +296,6 @@ TEST_CASE("furnace: the direct light of an enclosing emitter is Le E(wo), with a
 
 // ---------------------------------------------------------------------------------------------------------
 // Direct light from a square emitter over a floor.
-
-namespace {
-
-// The corners of instance i's mesh in world space, in the mesh's order (a quad: a polygon loop).
-std::array<glm::dvec3, 4> world_corners(const Scene& s, const ScenePose& pose, int i) {
-  const Mesh& mesh = s.meshes[size_t(s.instances[size_t(i)].mesh)];
-  const glm::dmat4 m(pose.instance_to_world[size_t(i)]);
-  std::array<glm::dvec3, 4> out;
-  for (size_t k = 0; k < 4; ++k) out[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.positions[k]), 1.0));
-  return out;
-}
-
-// Lambert's polygon formula (Lambert 1760; Arvo 1995, "Applications of Irradiance Tensors to the Simulation
-// of Non-Lambertian Phenomena", Sec. 2):
-// the irradiance at p, normal n, from a polygon of uniform radiance Le entirely above p's tangent plane,
-//   E = Le / 2 | sum_i Theta_i (n . g_i) |,   r_i = unit(q_i - p),  Theta_i = acos(r_i . r_i+1),
-//   g_i = unit(r_i x r_i+1),
-// the absolute value taking care of the winding (the sign says whether the loop turns left or right).
-double lambert_polygon_irradiance(const glm::dvec3& p, const glm::dvec3& n, const std::array<glm::dvec3, 4>& q,
-                                  double radiance) {
-  double sum = 0.0;
-  for (size_t i = 0; i < q.size(); ++i) {
-    const glm::dvec3 r0 = glm::normalize(q[i] - p), r1 = glm::normalize(q[(i + 1) % q.size()] - p);
-    sum += std::acos(std::clamp(glm::dot(r0, r1), -1.0, 1.0)) * glm::dot(n, glm::normalize(glm::cross(r0, r1)));
-  }
-  return 0.5 * radiance * std::abs(sum);
-}
-
-// int_quad Le k(wi) cos_p cos_l / r^2 dA by the midpoint rule on a grid x grid lattice of the quad
-// q(s, t) = q0 + s (q1 - q0) + t (q3 - q0): the area form of the light integral, independent of how the
-// path tracer samples it. cos_p = n . wi at p; cos_l = n_l . (-wi) at the light, n_l its front normal
-// (counter-clockwise, trace/lights.h); a point seen from behind does not count.
-template <class Kernel>
-double emitter_quadrature(const glm::dvec3& p, const glm::dvec3& n, const std::array<glm::dvec3, 4>& q,
-                          double radiance, int grid, Kernel kernel) {
-  const glm::dvec3 es = q[1] - q[0], et = q[3] - q[0];
-  const glm::dvec3 area_normal = glm::cross(es, et);  // |es x et| ds dt = dA
-  const glm::dvec3 n_light = glm::normalize(area_normal);
-  const double dA = glm::length(area_normal) / (double(grid) * grid);
-  double sum = 0.0;
-  for (int i = 0; i < grid; ++i)
-    for (int j = 0; j < grid; ++j) {
-      const glm::dvec3 point = q[0] + ((i + 0.5) / grid) * es + ((j + 0.5) / grid) * et;
-      const glm::dvec3 d = point - p;
-      const double r2 = glm::dot(d, d);
-      const glm::dvec3 wi = d / std::sqrt(r2);
-      const double cos_p = glm::dot(n, wi), cos_l = -glm::dot(n_light, wi);
-      if (cos_p > 0.0 && cos_l > 0.0) sum += kernel(wi) * cos_p * cos_l / r2;
-    }
-  return radiance * sum * dA;
-}
-
-// The floor's surface sample at a point of the floor, found by a ray straight down from 0.5 m above it
-// (below the light at 1 m, so nothing else is in the way).
-SurfaceSample floor_sample(const EmbreeScene& embree, const glm::vec3& point) {
-  const Hit hit = embree.intersect({point + glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f)});
-  return {hit.instance, hit.triangle, hit.bary};
-}
-
-}  // namespace
 
 TEST_CASE("Lambert's polygon formula and the emitter quadrature agree (the quadrature is right)") {
   const LightOverPlane s = light_over_plane(0.5f, 10.0f, 0.5f, 1.0f);

@@ -96,6 +96,19 @@ TEST_CASE("Sampler: the same (seed, index) gives a bit-identical sequence") {
   }
 }
 
+TEST_CASE("SamplePair: at(index) is the pair-th next_2d of Sampler(seed, index), bit for bit") {
+  int differing = 0;
+  for (uint32_t seed : {0u, 0xC0FFEEu})
+    for (uint32_t pair = 0; pair < 4; ++pair) {
+      const rtdr::SamplePair points(seed, pair);
+      for (uint32_t index = 0; index < 256; ++index) {
+        const glm::vec2 a = points.at(index), b = point_of_pair(seed, index, int(pair));
+        differing += bits_of(a.x) != bits_of(b.x) || bits_of(a.y) != bits_of(b.y);
+      }
+    }
+  CHECK(differing == 0);
+}
+
 TEST_CASE("Sampler: next_1d is the first coordinate of the next pair") {
   // sampler.h: "half of a fresh pair; the other half is discarded so pairs stay aligned".
   rtdr::Sampler one_d(99u, 5u), two_d(99u, 5u);

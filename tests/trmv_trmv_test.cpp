@@ -26,7 +26,9 @@ constexpr int kW = 48, kH = 27;
 std::vector<Frame> cornell_frames(int count) {
   const Scene scene = load_scene("cornell");
   std::vector<Frame> frames;
-  for (int f = 0; f < count; ++f) frames.push_back(render_frame(scene, f, kW, kH, RenderSettings{}));
+  RenderSettings settings;  // trmv's input: with the shading term
+  settings.trace.shading_samples = kTrmvShadingSamples;
+  for (int f = 0; f < count; ++f) frames.push_back(render_frame(scene, f, kW, kH, settings));
   return frames;
 }
 

@@ -74,9 +74,12 @@ LightSet::LightSet(const Scene& scene, const ScenePose& pose, const ScenePose& c
   if (total <= 0.0) *this = LightSet();
 }
 
-LightSample LightSet::sample(float u_select, glm::vec2 u_point) const {
+int LightSet::choose(float u_select) const {
   // The first light whose cumulative power exceeds u_select; zero-power lights (empty bins) are skipped.
-  const int l = std::min(int(std::upper_bound(cdf_.begin(), cdf_.end(), u_select) - cdf_.begin()), int(cdf_.size()) - 1);
+  return std::min(int(std::upper_bound(cdf_.begin(), cdf_.end(), u_select) - cdf_.begin()), int(cdf_.size()) - 1);
+}
+
+LightSample LightSet::point_on(int l, glm::vec2 u_point) const {
   const EmissiveTriangle& e = lights_[size_t(l)];
   // Uniform point on the triangle: b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1) (Shirley and Chiu 1997).
   const float s = std::sqrt(u_point.x);
@@ -88,6 +91,16 @@ LightSample LightSet::sample(float u_select, glm::vec2 u_point) const {
   ls.pdf_area = area_pdf(size_t(l));
   ls.light = l;
   return ls;
+}
+
+LightSample LightSet::sample(float u_select, glm::vec2 u_point) const { return point_on(choose(u_select), u_point); }
+
+LightSample LightSet::sample_reusing(glm::vec2 u) const {
+  const int l = choose(u.x);
+  // u.x lies in [cdf[l - 1], cdf[l]); its place in that interval is again uniform, and independent of the choice.
+  const float lower = l > 0 ? cdf_[size_t(l) - 1] : 0.0f, width = cdf_[size_t(l)] - lower;
+  const float reused = width > 0.0f ? std::clamp((u.x - lower) / width, 0.0f, 0x1.fffffep-1f) : 0.0f;
+  return point_on(l, {reused, u.y});
 }
 
 float LightSet::area_pdf(size_t light) const {

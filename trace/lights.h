@@ -51,6 +51,10 @@ class LightSet {
   // Picks a light by (the choice pose's) power with u_select, then a uniform point on it with u_point (uniform on the
   // triangle by the square-root warp, Shirley and Chiu 1997 / pbrt-v4 Sec. A.5.5).
   LightSample sample(float u_select, glm::vec2 u_point) const;
+  // The same choice and point from one 2D number: u.x chooses the light, and its position inside that light's
+  // interval of the cdf, rescaled to [0, 1), is the point's first coordinate (sample reuse, as pbrt-v4's
+  // SampleDiscrete returns uRemapped). A stratified set of u then stays stratified on each light (trace/shading.h).
+  LightSample sample_reusing(glm::vec2 u) const;
   // The area density with which sample() would have produced a point on triangle `triangle` of
   // `instance` (0 when it is not a light): used for MIS when a BSDF-sampled ray hits a light.
   float pdf_area(uint32_t instance, uint32_t triangle) const;
@@ -59,6 +63,8 @@ class LightSet {
 
  private:
   float area_pdf(size_t light) const;  // pmf / area
+  int choose(float u_select) const;    // the light whose cdf interval holds u_select
+  LightSample point_on(int light, glm::vec2 u_point) const;
 
   std::vector<EmissiveTriangle> lights_;
   std::vector<float> cdf_;                  // cdf_[i] = sum of the powers of lights 0..i, normalised to 1

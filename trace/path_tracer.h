@@ -31,12 +31,22 @@
 
 namespace rtdr {
 
+// The shading term's samples for TRMV's input: one estimate spreads by 0.07-0.22 % of the term under a square
+// light (tests/trace_shading_test.cpp); a power of 2 makes the M points a (0, 2)-net.
+inline constexpr int kTrmvShadingSamples = 64;
+
 struct TraceOptions {
   // B: indirect bounces after the primary hit [SVGF17 Sec. 3 uses 1]. Range [0, 1024].
   int max_bounces = 1;
   // Path-space regularization: from the second vertex on, roughness is at least this [SVGF17 Sec. 3,
   // Kaplanyan and Dachsbacher 2013]. Range [0, 1]; 0 turns it off.
   float regularized_roughness = 0.3f;
+  // M: light samples per pixel of the noise-free shading term `direct.shading` [TRMV21 Sec. 4.3]
+  // (trace/shading.h) at 1 spp; an N-spp frame takes one estimate of M ceil(sqrt(N)). Range [0, 1024]; 0 (the
+  // default) leaves the layer out: at kTrmvShadingSamples it costs several times a 1-spp frame's tracing
+  // (trace/README.md), which only TRMV's input needs (rtdr render --shading-samples, and rtdr eval by itself when a
+  // method reads the layer).
+  int shading_samples = 0;
 };
 
 // Where the path went, for the motion vectors of [TRMV21 Sec. 4]. kInvalidId instances mean "none".

@@ -7,9 +7,11 @@
 #include "motion/backproject.h"
 #include "motion/shadow.h"
 #include "trace/sampler.h"
+#include "trace/shading.h"
 
 #include <chrono>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,18 +34,21 @@ const char* const kXYZ[3] = {"X", "Y", "Z"};
 // pixel's results straight into them (no second copy of a 200 MB frame).
 struct RadianceLayers {
   Channels3 direct, indirect, unshadowed, indirect_diffuse, indirect_glossy;
+  std::optional<Channels3> shading;  // only when TraceOptions::shading_samples > 0
   FloatPlane& visibility;
   UIntPlane& seed;
   Channels3 light, blocker, secondary, direction;
   UIntPlane &light_id, &blocker_id, &secondary_id;
 
-  explicit RadianceLayers(Frame& f)
+  RadianceLayers(Frame& f, bool with_shading)
       : direct(f, "direct", kRGB), indirect(f, "indirect", kRGB), unshadowed(f, "direct.unshadowed", kRGB),
         indirect_diffuse(f, "indirect.diffuse", kRGB), indirect_glossy(f, "indirect.glossy", kRGB),
         visibility(f.add_float("direct.visibility")), seed(f.add_uint("rng.seed")), light(f, "path.light", kXYZ),
         blocker(f, "path.blocker", kXYZ), secondary(f, "path.secondary", kXYZ), direction(f, "path.direction", kXYZ),
         light_id(f.add_uint("path.light.instance", kInvalidId)), blocker_id(f.add_uint("path.blocker.instance", kInvalidId)),
-        secondary_id(f.add_uint("path.secondary.instance", kInvalidId)) {}
+        secondary_id(f.add_uint("path.secondary.instance", kInvalidId)) {
+    if (with_shading) shading.emplace(f, "direct.shading", kRGB);
+  }
 
   void set_record(size_t i, const PathRecord& r) {
     light.set(i, r.light_position);
@@ -56,7 +61,9 @@ struct RadianceLayers {
   }
 };
 
-// Traces `spp` samples of pixel i and stores their mean, demodulated by the pixel's albedo.
+// Traces `spp` samples of pixel i and stores their mean, demodulated by the pixel's albedo. The shading term
+// [TRMV21 Sec. 4.3] is one estimate per pixel from M ceil(sqrt(spp)) light samples (trace/shading.h): it
+// draws from a sequence of its own, so the paths' numbers, and every other layer, are the same without it.
 uint32_t trace_pixel(const TraceContext& c, const SurfaceSample& s, const glm::vec3& eye, uint32_t seed, int spp,
                      size_t i, RadianceLayers& out) {
   glm::vec3 direct(0.0f), indirect(0.0f), unshadowed(0.0f), diffuse(0.0f), glossy(0.0f), albedo(0.0f);
@@ -80,6 +87,10 @@ uint32_t trace_pixel(const TraceContext& c, const SurfaceSample& s, const glm::v
   out.unshadowed.set(i, unshadowed * scale);
   out.indirect_diffuse.set(i, diffuse * scale);
   out.indirect_glossy.set(i, glossy * scale);
+  if (out.shading) {
+    const uint32_t shading_samples = shading_sample_count(c.options.shading_samples, spp);
+    out.shading->set(i, direct_shading(c, s, eye, seed, shading_samples) / demodulation_factor(albedo));
+  }
   out.visibility.data[i] = visibility / float(spp);
   return rays;
 }
@@ -106,7 +117,7 @@ TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const Render
   std::map<int, TraceContext> contexts;
   for (const auto& [f, set] : lights) contexts.emplace(f, TraceContext{scene, g.pose, embree, set, surfaces, settings.trace});
 
-  RadianceLayers layers(frame);
+  RadianceLayers layers(frame, settings.trace.shading_samples > 0);
   // Rays per second measure the tracing loop alone (not the BVH build or Embree's one-time start-up).
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint64_t> rays_per_row(size_t(height), 0);  // summed after the loop: no shared counter
@@ -135,7 +146,7 @@ Frame render_frame(const Scene& scene, int frame_index, int width, int height, c
   write_gbuffer_layers(scene, geometry, frame);
   write_motion_layers(scene, geometry, frame);
   const TraceStats s = trace_layers(scene, geometry, settings, frame, rows_done);
-  write_shadow_motion_layers(scene, geometry, frame);  // from the path record just traced [TRMV21 Eq. 3]
+  write_shadow_motion_layers(geometry, frame);  // from the path record just traced [TRMV21 Eq. 3]
   if (stats) *stats = s;
   return frame;
 }

@@ -2,8 +2,9 @@
 //
 // Pass: trace_layers(scene, geometry, settings) -> radiance layers of docs/buffers.md.
 //   in:  the frame's geometry (raster/gbuffer_frame.h), the settings (spp, seed, bounces)
-//   out: demodulated direct and indirect illumination and their components, the per-pixel seed, the path
-//        record. With spp = 1 these are the noisy inputs of every denoiser; with spp = N they are the mean of
+//   out: demodulated direct and indirect illumination and their components, TRMV's noise-free shading term
+//        when asked (trace/shading.h, once per pixel), the per-pixel seed, the path record. With spp = 1 these are
+//        the noisy inputs of every denoiser; with spp = N they are the mean of
 //        N samples of the same estimator at the same time: the reference (ground truth).
 //
 // Seeds: pixel (x, y) of frame f has seed pixel_seed(settings.seed, f, x, y), new every frame; sample s of N

@@ -58,16 +58,24 @@ float to_unit_float(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
 
 }  // namespace
 
-glm::vec2 Sampler::next_2d() {
-  // Each dimension pair gets its own seed: shuffle the index (an Owen scramble of the index itself), then
-  // scramble each of the two coordinates with a seed of its own (Burley 2020, Listing 3, two dimensions).
-  const uint32_t pair_seed = hash_combine(seed_, pair_++);
-  const uint32_t shuffled = owen_scramble(index_, hash_combine(pair_seed, 0xa511e9b3U));
+// Each dimension pair gets its own seed: shuffle the index (an Owen scramble of the index itself), then
+// scramble each of the two coordinates with a seed of its own (Burley 2020, Listing 3, two dimensions).
+SamplePair::SamplePair(uint32_t seed, uint32_t pair) {
+  const uint32_t pair_seed = hash_combine(seed, pair);
+  shuffle_seed_ = hash_combine(pair_seed, 0xa511e9b3U);
+  x_seed_ = hash_combine(pair_seed, 0x63d83595U);
+  y_seed_ = hash_combine(pair_seed, 0x8c7a2f13U);
+}
+
+glm::vec2 SamplePair::at(uint32_t index) const {
+  const uint32_t shuffled = owen_scramble(index, shuffle_seed_);
   // Dimension 0 is reverse_bits(shuffled); its Owen scramble reverse_bits(LK(reverse_bits(.))) then reverses
   // twice in a row, which cancels: reverse_bits(LK(shuffled)).
-  const uint32_t x = reverse_bits(laine_karras_permutation(shuffled, hash_combine(pair_seed, 0x63d83595U)));
-  const uint32_t y = owen_scramble(sobol_dim1(shuffled), hash_combine(pair_seed, 0x8c7a2f13U));
+  const uint32_t x = reverse_bits(laine_karras_permutation(shuffled, x_seed_));
+  const uint32_t y = owen_scramble(sobol_dim1(shuffled), y_seed_);
   return {to_unit_float(x), to_unit_float(y)};
 }
+
+glm::vec2 Sampler::next_2d() { return SamplePair(seed_, pair_++).at(index_); }
 
 }  // namespace rtdr

@@ -32,6 +32,18 @@ inline uint32_t pixel_seed(uint32_t global_seed, int frame, int x, int y) {
   return hash_combine(hash_combine(hash_combine(hash_u32(global_seed), uint32_t(frame)), uint32_t(x)), uint32_t(y));
 }
 
+// One dimension pair of every sample under one seed: at(index) is the point that the `pair`-th next_2d() of
+// Sampler(seed, index) returns (pair 0 = the first call), bit for bit. The pair's scramble seeds are hashed once,
+// so a loop over many sample indices of one pair (trace/shading.h) does not hash them again for every point.
+class SamplePair {
+ public:
+  SamplePair(uint32_t seed, uint32_t pair);
+  glm::vec2 at(uint32_t index) const;
+
+ private:
+  uint32_t shuffle_seed_, x_seed_, y_seed_;
+};
+
 class Sampler {
  public:
   Sampler(uint32_t seed, uint32_t sample_index) : seed_(seed), index_(sample_index) {}

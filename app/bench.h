@@ -1,5 +1,5 @@
 // Shared pieces of `rtdr bench`: options, the median timer and the scene list. Each stage is one file:
-// bench_raster.cpp, bench_trace.cpp, bench_filter.cpp.
+// bench_raster.cpp, bench_trace.cpp, bench_gradients.cpp, bench_motion.cpp, bench_filter.cpp.
 #pragma once
 
 #include "app/commands.h"
@@ -53,5 +53,6 @@ void bench_raster(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_trace(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_filter(const BenchOptions& o, Size size, std::ostream* csv);
 void bench_gradients(const BenchOptions& o, Size size, std::ostream* csv);
+void bench_motion(const BenchOptions& o, Size size, std::ostream* csv);
 
 }  // namespace rtdr

@@ -4,6 +4,7 @@
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
 //   --stage gradients: a 1-spp frame with and without A-SVGF's gradient samples (bench_gradients.cpp)
+//   --stage motion: TRMV's shadow motion and its splat beside a 1-spp frame's tracing (bench_motion.cpp)
 //   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
 //                   default stage when --backend is given
 #include "app/bench.h"
@@ -40,8 +41,10 @@ void run_bench(const BenchOptions& o) {
     bench_filter(o, size, csv_out);
   else if (o.stage == "gradients")
     bench_gradients(o, size, csv_out);
+  else if (o.stage == "motion")
+    bench_motion(o, size, csv_out);
   else
-    throw Error("--stage '" + o.stage + "' is not one of: raster, trace, gradients, filter");
+    throw Error("--stage '" + o.stage + "' is not one of: raster, trace, gradients, motion, filter");
   if (!o.csv.empty()) {
     write_text_file(o.csv, csv.str());
     std::printf("wrote %s\n", o.csv.c_str());
@@ -53,7 +56,7 @@ void run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "time a stage on the shipped scenes (median after warm-up)");
-  sub->add_option("--stage", o->stage, "what to time: raster, trace, gradients, filter")->capture_default_str();
+  sub->add_option("--stage", o->stage, "what to time: raster, trace, gradients, motion, filter")->capture_default_str();
   sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--scenes", o->scenes, "comma-separated scene names, or all")->capture_default_str();
   sub->add_option("--runs", o->runs, "timed runs (the median is reported)")->check(CLI::Range(1, 10000))->capture_default_str();

@@ -205,6 +205,24 @@ TEST_CASE("rtdr bench --stage gradients times a frame with and without gradient 
   CHECK(run_rtdr("bench --stage gradients --size 30x18 --runs 1 --gradient-stratum-size 1", dir).exit_code != 0);
 }
 
+TEST_CASE("rtdr bench --stage motion times the shadow motion and its splat beside the frame's tracing") {
+  const fs::path dir = scratch("bench_motion");
+  const fs::path csv = dir / "bench.csv";
+  const RunResult r = run_rtdr("bench --stage motion --scenes pillars --size 48x27 --runs 1 --warmup 0 --csv " +
+                               csv.string(), dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string text = read_file(csv);
+  for (const char* metric : {"trace_ms", "shadow_ms", "splat_ms", "share", "valid_share"})
+    CHECK_THAT(text, Catch::Contains(std::string("motion,pillars,48,27,")) && Catch::Contains(metric));
+  // pillars' shadows cover part of the floor: some pixels, not all, have a valid shadow vector.
+  const std::regex valid("valid_share,([0-9.e-]+)");
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, valid));
+  CHECK(std::stod(m[1].str()) > 0.01);
+  CHECK(std::stod(m[1].str()) < 0.9);
+}
+
 TEST_CASE("rtdr bench --stage filter runs the method with the parameters given, on each back end") {
   const fs::path dir = scratch("bench");
   std::string backends = "cpu";

@@ -7,6 +7,8 @@
 #   error_over_frames.png  error per frame and method
 #   strip.png              the last frame: 1-spp input | svgf | accum | eaw | eaw-accum | none | reference
 #   static/                the same on the still scene; static/temporal_error.png is SVGF Fig. 10's chart
+#   fence/                 TRMV's Fig. 8: the fence's moving shadows, trmv along the shadow motion and along the
+#                          surface motion beside svgf and asvgf (filters/trmv/README.md)
 # References are cached in out/cache/, so a second run takes seconds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,3 +18,5 @@ build/app/rtdr eval --scene pillars --methods all --sweep --frames 0-23 --size 3
   --cache out/cache --out out/demo
 build/app/rtdr eval --scene static --methods svgf,asvgf,accum,eaw,none --frames 0-23 --size 320x180 --ref-spp 16 \
   --cache out/cache --out out/demo/static
+build/app/rtdr eval --scene fence --methods svgf,asvgf,trmv,trmv:motion=traditional --frames 0-15 --size 320x180 \
+  --ref-spp 64 --cache out/cache --out out/demo/fence

@@ -1,0 +1,65 @@
+// rtdr bench --stage motion: what TRMV's shadow motion adds to a 1-spp frame, per shipped scene at --size: the
+// median time of the shadow vector [TRMV21 Eq. 3] over every pixel (motion/shadow.h, from the frame's path record)
+// and of its splat [TRMV21 Sec. 4.1] (motion/shadow_splat.h), beside the 1-spp frame's tracing loop
+// (trace_layers' own time, TraceStats::seconds), and their sum as a share of it; and the same share of TRMV's own
+// input frame, which also traces the shading term direct.shading (kTrmvShadingSamples light samples a pixel,
+// trace/shading.h). Target: at most 5 % (the paper's vectors cost under 0.23 ms on a GPU [TRMV21 Fig. 13], inside
+// its ray-generation shader). Also the share of pixels with a valid shadow vector.
+#include "app/bench.h"
+#include "core/parallel.h"
+#include "motion/backproject.h"
+#include "motion/shadow.h"
+#include "motion/shadow_splat.h"
+#include "scenes/gltf_loader.h"
+#include "trace/render_frame.h"
+
+#include <cstdio>
+
+namespace rtdr {
+
+void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
+  std::printf("%-14s %9s %9s %10s %9s %10s %7s %11s %8s   (median of %d runs, %d threads)\n", "scene", "size",
+              "trace ms", "+shading", "shadow ms", "splat ms", "share", "of +shading", "valid", o.runs, thread_count());
+  const RenderSettings settings;  // 1 spp, seed 0
+  RenderSettings trmv_settings;   // and TRMV's input: with the shading term
+  trmv_settings.trace.shading_samples = kTrmvShadingSamples;
+  for (const std::string& name : bench_scene_list(o.scenes)) {
+    const Scene scene = load_scene(name);
+    const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
+    Frame frame(size.width, size.height);
+    write_gbuffer_layers(scene, g, frame);
+    write_motion_layers(scene, g, frame);
+    std::vector<double> trace_seconds;
+    median_ms(o.warmup, o.runs, [&] { trace_seconds.push_back(trace_layers(scene, g, settings, frame).seconds); });
+    const double trace_ms = 1e3 * median(trace_seconds);
+    std::vector<double> trmv_seconds;
+    median_ms(o.warmup, o.runs, [&] { trmv_seconds.push_back(trace_layers(scene, g, trmv_settings, frame).seconds); });
+    const double trmv_trace_ms = 1e3 * median(trmv_seconds);
+    std::vector<ShadowMotion> shadow;
+    const double shadow_ms = median_ms(o.warmup, o.runs, [&] { shadow = shadow_motion(g, frame); });
+    const std::vector<glm::vec2> surface = frame.get_vec2("motion");
+    const double splat_ms = median_ms(o.warmup, o.runs, [&] {
+      splat_shadow_motion(shadow, surface, g.vis.depth, size.width, size.height, kShadowSplatSize);
+    });
+    size_t valid = 0;
+    for (const ShadowMotion& m : shadow) valid += m.valid;
+    const double share = (shadow_ms + splat_ms) / trace_ms, valid_share = double(valid) / double(shadow.size());
+    const double trmv_share = (shadow_ms + splat_ms) / trmv_trace_ms;
+    std::printf("%-14s %4dx%-4d %9.1f %9.1f %10.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", name.c_str(), size.width,
+                size.height, trace_ms, trmv_trace_ms, shadow_ms, splat_ms, 100.0 * share, 100.0 * trmv_share,
+                100.0 * valid_share);
+    if (csv) {
+      const std::string row = "motion," + name + ',' + std::to_string(size.width) + ',' +
+                              std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';
+      *csv << row << "trace_ms," << trace_ms << '\n'
+           << row << "trace_with_shading_ms," << trmv_trace_ms << '\n'
+           << row << "share_with_shading," << trmv_share << '\n'
+           << row << "shadow_ms," << shadow_ms << '\n'
+           << row << "splat_ms," << splat_ms << '\n'
+           << row << "share," << share << '\n'
+           << row << "valid_share," << valid_share << '\n';
+    }
+  }
+}
+
+}  // namespace rtdr

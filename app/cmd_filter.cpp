@@ -45,6 +45,7 @@ void run_filter(const FilterOptions& o) {
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
               o.method == "none" ? "" : describe(o.params.svgf).c_str());
   if (o.method == "asvgf") std::printf("%s", describe_params(asvgf_param_table(), param_values(o.params.asvgf)).c_str());
+  if (o.method == "trmv") std::printf("%s", describe_params(trmv_param_table(), param_values(o.params.trmv)).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_method_input(f.path, method->inputs());
     const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
@@ -99,7 +100,7 @@ void run_probe(const ProbeOptions& o) {
 Command add_filter_command(CLI::App& app) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
-  sub->add_option("--method", o->method, "svgf, asvgf, a-eaw, accum, eaw, eaw-accum or none")->capture_default_str();
+  sub->add_option("--method", o->method, "svgf, asvgf, a-eaw, accum, eaw, eaw-accum, none or trmv")->capture_default_str();
   sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports; svgf only)")
       ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
@@ -126,7 +127,7 @@ Command add_probe_command(CLI::App& app) {
   }
   sub->add_option("--pass", o->pass, names)->capture_default_str();
   sub->footer(passes);
-  sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes)")->capture_default_str();
+  sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes); trmv: visibility or indirect")->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");
   add_method_flags(sub, o->params, o->method);

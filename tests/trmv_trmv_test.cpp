@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/passes.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
 #include "filters/trmv/spatial.h"
@@ -94,5 +95,54 @@ TEST_CASE("trmv's output is the same, bit for bit, for any thread count, and res
   m->filter(frames[1]);
   m->reset();
   CHECK(max_difference(rgb_plane(m->filter(frames[0]), "color"), first) == 0.0);
-  CHECK_THROWS_AS(m->probe("temporal", 1, 1, "indirect", 0), Error);
+}
+
+TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomputes the dumped values") {
+  const std::vector<Frame> frames = cornell_frames(3);
+  const std::unique_ptr<Method> m = make_method("trmv");
+  Frame dump;
+  Frame out;
+  for (const Frame& f : frames) out = m->filter(f, &dump);
+  std::vector<std::string> channels;
+  for (const auto& [name, plane] : dump.float_channels()) channels.push_back(name);
+  std::vector<std::string> declared = m->dump_channels();
+  std::sort(declared.begin(), declared.end());
+  CHECK(channels == declared);
+  CHECK(declared.size() == 24);  // 9 scalar layers, 4 RGB ones and filter.tonemapped
+
+  // The colour is the filtered visibility times the shading term, plus the filtered indirect light, remodulated.
+  const FloatPlane v = dump.float_channel("filter.trmv.visibility.cleaned");
+  RgbPlane direct = rgb_plane(frames.back(), "direct.shading");
+  for (size_t i = 0; i < direct.data.size(); ++i) direct.data[i] *= v.data[i];
+  const RgbPlane expected = remodulate(direct, rgb_plane(dump, "filter.trmv.indirect.cleaned"),
+                                       rgb_plane(frames.back(), "albedo"), rgb_plane(frames.back(), "emission"));
+  CHECK(max_difference(rgb_plane(out, "color"), expected) == 0.0);
+
+  // The probe re-runs a pass's per-pixel function on the inputs it saw: its terms are the dumped values.
+  // The value of the first term called `name` or `other` (falloff says "alpha^V = alpha" where it has no evidence).
+  const auto term = [](const Probe& p, const std::string& name, const std::string& other = "-") {
+    for (const Probe::Term& t : p.terms())
+      if (t.name == name || t.name == other) return t.value;
+    FAIL("no term " << name);
+    return std::vector<float>{};
+  };
+  CHECK(m->probe_passes() == std::vector<std::string>{"trmv_spatial", "trmv_falloff", "trmv_temporal", "trmv_cleanup"});
+  int covered = 0;
+  for (int y = 2; y < kH; y += 6)
+    for (int x = 3; x < kW; x += 7) {
+      if (frames.back().uint_channel("id.mesh").data[size_t(y * kW + x)] == kInvalidId) continue;
+      ++covered;
+      const size_t i = size_t(y * kW + x);
+      CHECK(term(m->probe("trmv_falloff", x, y, "visibility", 0), "alpha^V", "alpha^V = alpha")[0] ==
+            dump.float_channel("filter.trmv.visibility.alpha").data[i]);
+      CHECK(term(m->probe("trmv_temporal", x, y, "visibility", 0), "cbar_i")[0] ==
+            dump.float_channel("filter.trmv.visibility.temporal").data[i]);
+      CHECK(term(m->probe("trmv_cleanup", x, y, "indirect", 0), "w_C")[0] ==
+            dump.float_channel("filter.trmv.indirect.w_c").data[i]);
+      CHECK_FALSE(m->probe("trmv_spatial", x, y, "direct", 0).terms().empty());
+    }
+  CHECK(covered > 10);
+  CHECK_THROWS_AS(m->probe("atrous", 1, 1, "visibility", 0), Error);      // not one of trmv's passes
+  CHECK_THROWS_AS(m->probe("trmv_cleanup", 1, 1, "glossy", 0), Error);    // not one of its components
+  CHECK_THROWS_AS(m->probe("trmv_cleanup", kW, 1, "indirect", 0), Error);  // outside the frame
 }

@@ -2,9 +2,11 @@
 #include "filters/trmv/trmv.h"
 
 #include "core/error.h"
+#include "filters/passes.h"
 #include "filters/svgf/modulate.h"
 #include "filters/trmv/spatial.h"
 
+#include <algorithm>
 #include <string>
 
 namespace rtdr {
@@ -53,15 +55,17 @@ void TrmvFilter::reset() {
   prev_positions_ = {};
 }
 
-const RgbPlane& TrmvFilter::filter_component(Component& c, const RgbPlane& noisy, const TrmvMotion& motion,
-                                             const FloatPlane& alpha) {
+const RgbPlane& TrmvFilter::filter_component(Component& c) {
   const TrmvParams& p = params_.trmv;
   // 1. The spatial filter of the current frame: c~_i.
-  time_pass("spatial", [&] { c.filtered = trmv_spatial_pass(noisy, surface_, p, params_.svgf); });
+  time_pass("trmv_spatial", [&] { c.filtered = trmv_spatial_pass(c.noisy, surface_, p, params_.svgf); });
   // 2-3. The history along the component's motion, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2, Sec. 5].
-  time_pass("temporal", [&] { c.temporal = trmv_temporal_pass(c.filtered, surface_.mesh, motion, c.history, alpha, p); });
+  c.seen_history = c.history;
+  time_pass("trmv_temporal", [&] {
+    c.temporal = trmv_temporal_pass(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p);
+  });
   // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8].
-  time_pass("cleanup", [&] { c.cleaned = trmv_cleanup_pass(c.temporal, alpha, surface_, p, params_.svgf); });
+  time_pass("trmv_cleanup", [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, p, params_.svgf); });
   // Next frame's history: before the clean-up unless asked otherwise (history_after_cleanup).
   c.history.color = p.history_after_cleanup != 0 ? c.cleaned.color : c.temporal.color;
   c.history.mesh = surface_.mesh;
@@ -79,20 +83,27 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
   surface_ = SurfacePlanes::from_frame(in);
   const TrmvParams& p = params_.trmv;
 
-  // Visibility: along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion.
-  const TrmvMotion surface_motion{surface_.motion, {}};
-  const TrmvMotion shadow_motion{xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid")};
-  FloatPlane alpha_v;  // empty: the constant alpha
-  if (p.motion == 1) {
-    const TrmvReceiver receiver{xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
-    time_pass("falloff", [&] { alpha_v = trmv_falloff_pass(receiver, shadow_motion, prev_positions_, p).alpha_v; });
-  }
-  // A pixel whose shadow motion is the surface motion (no splat landed) keeps its history along it.
-  const TrmvMotion visibility_motion{p.motion == 1 ? shadow_motion.motion : surface_.motion, {}};
-  const RgbPlane& v = filter_component(visibility_, grey_plane(in.float_channel("direct.visibility")),
-                                       visibility_motion, alpha_v);
-  const RgbPlane& indirect = filter_component(indirect_, rgb_plane(in, "indirect"), surface_motion, {});
-  prev_positions_ = {xyz_plane(in, "position"), surface_.mesh};
+  // Visibility: along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the
+  // constant alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
+  shadow_motion_ = {xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid")};
+  receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
+  seen_prev_positions_ = prev_positions_;
+  FloatPlane theta;
+  visibility_.alpha = {};
+  if (p.motion == 1)
+    time_pass("trmv_falloff", [&] {
+      TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
+      visibility_.alpha = std::move(falloff.alpha_v);
+      theta = std::move(falloff.theta);
+    });
+  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
+  visibility_.motion = {p.motion == 1 ? shadow_motion_.motion : surface_.motion, {}};
+  const RgbPlane& v = filter_component(visibility_);
+  // Indirect light: along the surface motion (the dual and glossy vectors of TRMV21 Sec. 4.2-4.3 do not exist yet).
+  indirect_.noisy = rgb_plane(in, "indirect");
+  indirect_.motion = {surface_.motion, {}};
+  const RgbPlane& indirect = filter_component(indirect_);
+  prev_positions_ = {receiver_.position, surface_.mesh};
 
   RgbPlane color, display;
   time_pass("modulate", [&] {
@@ -100,16 +111,86 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
                        rgb_plane(in, "emission"));
   });
   time_pass("tonemap", [&] { display = tonemap(color, params_.tonemap); });
+  this->dump(dump, theta, display);
 
   Frame out(in.width(), in.height());
   out.source = in.source;
-  set_rgb_plane(out, "color", color);
-  set_rgb_plane(out, "display", display);
+  set_rgb_plane(out, layer_name(layers::kColor), color);
+  set_rgb_plane(out, layer_name(layers::kDisplay), display);  // no TAA: the tone-mapped colour
   return out;
 }
 
-Probe TrmvFilter::probe(const std::string& pass, int, int, const std::string&, int) const {
-  throw Error("rtdr probe does not cover method trmv's passes yet (pass '" + pass + "')");
+void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const {
+  if (!dump) return;
+  using namespace layers;
+  const TrmvParams& p = params_.trmv;
+  const auto first = [](const RgbPlane& rgb) {  // visibility travels as (V, V, V)
+    FloatPlane out(rgb.width, rgb.height);
+    for (size_t i = 0; i < rgb.data.size(); ++i) out.data[i] = rgb.data[i].x;
+    return out;
+  };
+  dump_layer(dump, kTrmvVisibilitySpatial, {}, -1, first(visibility_.filtered));
+  dump_layer(dump, kTrmvIndirectSpatial, {}, -1, indirect_.filtered);
+  if (p.motion == 1) {
+    dump_layer(dump, kTrmvTheta, {}, -1, theta);
+    dump_layer(dump, kTrmvAlphaV, {}, -1, visibility_.alpha);
+  }
+  dump_layer(dump, kTrmvWeightA, {}, -1, visibility_.cleaned.w_a);
+  dump_layer(dump, kTrmvVisibilityTemporal, {}, -1, first(visibility_.temporal.color));
+  dump_layer(dump, kTrmvVisibilityClamped, {}, -1, first(visibility_.temporal.clamped));
+  dump_layer(dump, kTrmvIndirectTemporal, {}, -1, indirect_.temporal.color);
+  dump_layer(dump, kTrmvIndirectClamped, {}, -1, indirect_.temporal.clamped);
+  dump_layer(dump, kTrmvVisibilityWeightC, {}, -1, visibility_.cleaned.w_c);
+  dump_layer(dump, kTrmvIndirectWeightC, {}, -1, indirect_.cleaned.w_c);
+  dump_layer(dump, kTrmvVisibilityCleaned, {}, -1, first(visibility_.cleaned.color));
+  dump_layer(dump, kTrmvIndirectCleaned, {}, -1, indirect_.cleaned.color);
+  dump_layer(dump, kTonemapped, {}, -1, tonemapped);
+}
+
+std::vector<std::string> TrmvFilter::probe_passes() const {
+  std::vector<std::string> passes = {"trmv_spatial", "trmv_temporal", "trmv_cleanup"};
+  if (params_.trmv.motion == 1) passes.insert(passes.begin() + 1, "trmv_falloff");
+  return passes;
+}
+
+std::vector<std::string> TrmvFilter::dump_channels() const {
+  std::vector<std::string> channels;
+  for (const std::string& name : probe_passes())
+    for (const LayerDecl* layer : find_pass(name).writes)
+      for (std::string& c : layer_channels(*layer)) channels.push_back(std::move(c));
+  for (std::string& c : layer_channels(layers::kTonemapped)) channels.push_back(std::move(c));
+  return channels;
+}
+
+const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) const {
+  if (stream == "visibility" || stream == "direct") return visibility_;  // direct's noisy part is its visibility
+  if (stream == "indirect") return indirect_;
+  throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), indirect");
+}
+
+Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int) const {
+  const std::vector<std::string> passes = probe_passes();
+  if (std::find(passes.begin(), passes.end(), pass) == passes.end()) find_pass(pass);  // throws for an unknown pass
+  if (std::find(passes.begin(), passes.end(), pass) == passes.end())
+    throw Error("method trmv does not run pass '" + pass + "' with these parameters");
+  if (surface_.width() == 0) throw Error("probe: no frame has been filtered yet");
+  if (x < 0 || y < 0 || x >= surface_.width() || y >= surface_.height())
+    throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
+                std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
+  // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
+  const TrmvParams& p = params_.trmv;
+  const Component& c = component(stream);
+  Probe probe;
+  if (pass == "trmv_spatial") {  // the second (vertical) 1-D pass, on the first one's output
+    const RgbPlane rows = trmv_spatial_axis(c.noisy, surface_, kTrmvHorizontal, p.spatial_radius, FloatPlane(),
+                                            p.spatial_sigma, params_.svgf);
+    trmv_spatial_pixel(rows, surface_, kTrmvVertical, p.spatial_radius, p.spatial_sigma, params_.svgf, x, y, &probe);
+  }
+  if (pass == "trmv_falloff") trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, p, x, y, &probe);
+  if (pass == "trmv_temporal")
+    trmv_temporal_pixel(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p, x, y, &probe);
+  if (pass == "trmv_cleanup") trmv_cleanup_weights_pixel(c.temporal, c.alpha, p, x, y, &probe);
+  return probe;
 }
 
 }  // namespace rtdr

@@ -36,28 +36,36 @@ class TrmvFilter : public Method {
   std::string name() const override { return "trmv"; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
-  // rtdr probe does not cover TRMV's passes yet: probe() throws rtdr::Error saying so.
+  // `stream` is the component: "visibility" (or "direct", whose noisy part it is) or "indirect"; `level` is unused.
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
-  std::vector<std::string> probe_passes() const override { return {}; }
+  std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return trmv_input_channels(); }
-  std::vector<std::string> dump_channels() const override { return {}; }
+  std::vector<std::string> dump_channels() const override;
 
  private:
-  // One noisy component: its history and what its passes made this frame.
+  // One noisy component: its history, and what each of its passes saw and made this frame (for the probe).
   struct Component {
-    TrmvHistory history;          // cbar_{i-1} and the previous id.mesh
+    TrmvHistory history;          // cbar_{i-1} and the previous id.mesh: next frame's
+    TrmvHistory seen_history;     // the history the temporal pass read this frame
+    RgbPlane noisy;               // the 1-spp input (visibility as (V, V, V))
+    TrmvMotion motion;            // the vectors its history followed
+    FloatPlane alpha;             // alpha^V (visibility), or empty: the constant alpha
     RgbPlane filtered;            // c~_i [TRMV21 Eq. 2]
     TrmvTemporalOutput temporal;  // cbar_i, the fetched and clamped histories
     TrmvCleanupOutput cleaned;    // after the clean-up [TRMV21 Eq. 7-8]
   };
-  // Runs one component's passes; `alpha` is alpha^V for visibility, empty for the constant alpha.
-  const RgbPlane& filter_component(Component& c, const RgbPlane& noisy, const TrmvMotion& motion,
-                                   const FloatPlane& alpha);
+  // Runs one component's passes on c.noisy, c.motion and c.alpha.
+  const RgbPlane& filter_component(Component& c);
+  void dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const;
+  const Component& component(const std::string& stream) const;
 
   MethodParams params_;
   SurfacePlanes surface_;
   Component visibility_, indirect_;
+  TrmvMotion shadow_motion_;              // motion.shadow_splat and where a vector landed (.valid)
+  TrmvReceiver receiver_;                 // this frame's s_i, n(s_i), for Eq. 4
   TrmvPreviousPositions prev_positions_;  // the previous frame's `position` and id.mesh, for Eq. 4
+  TrmvPreviousPositions seen_prev_positions_;  // those the falloff pass read this frame
 };
 
 }  // namespace rtdr

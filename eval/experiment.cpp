@@ -119,8 +119,9 @@ MethodSpec parse_method_spec(const std::string& text) {
     } else if (key == "motion" && (value_text == "traditional" || value_text == "shadow")) {
       spec.trmv.motion = value_text == "shadow" ? 1 : 0;  // trmv_params.h's motion row, by name
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
-               !(set_param(spec.svgf, key, value) || set_param(spec.asvgf, key, value) ||
-                 set_param(spec.trmv, key, value) || set_gradient_row(spec, key, value))) {
+               !((spec.name == "trmv" && set_param(spec.trmv, key, value)) || set_param(spec.svgf, key, value) ||
+                 set_param(spec.asvgf, key, value) || set_param(spec.trmv, key, value) ||
+                 set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
                   "' is not parameter=value of svgf_params.h, asvgf_params.h, trmv_params.h or gradient_<row> of "
                   "trace/gradients.h, motion=traditional|shadow, backend=cpu|vulkan or illumination=fp32|fp16");

@@ -85,6 +85,16 @@ TEST_CASE("method specs: parameters, back end and illumination records, each che
   CHECK(rtdr::spec_params(asvgf).asvgf.gradient_levels == 3);
   CHECK_THROWS_WITH(rtdr::parse_method_spec("asvgf:gradient_levels=11"), Catch::Contains("gradient_levels"));
 
+  // trmv's own table first: its alpha is TRMV's (the svgf table has a row of the same name); motion by name.
+  const rtdr::MethodSpec trmv = rtdr::parse_method_spec("trmv:alpha=0.3:clamp_gamma=0:motion=traditional");
+  CHECK(trmv.trmv.alpha == 0.3f);
+  CHECK(trmv.svgf.alpha == rtdr::SvgfParams{}.alpha);
+  CHECK(trmv.trmv.clamp_gamma == 0.0f);
+  CHECK(trmv.trmv.motion == 0);
+  CHECK(rtdr::spec_params(trmv).trmv.alpha == 0.3f);
+  CHECK(rtdr::parse_method_spec("trmv:motion=shadow").trmv.motion == 1);
+  CHECK_THROWS_WITH(rtdr::parse_method_spec("trmv:motion=glossy"), Catch::Contains("motion=traditional|shadow"));
+
   for (const char* bad : {"svgf:backend=metal", "svgf:backend=", "svgf:backend", "svgf:illumination=fp16",
                           "svgf:backend=cpu:illumination=fp32", "svgf:backend=vulkan:illumination=fp8",
                           "svgf:sigma_q=1", "svgf:atrous_levels=11", "nothing:backend=vulkan"}) {

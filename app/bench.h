@@ -3,6 +3,9 @@
 #pragma once
 
 #include "app/commands.h"
+#include "core/frame.h"
+#include "raster/gbuffer_frame.h"
+#include "scenes/scene.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,6 +50,14 @@ double median_ms(int warmup, int runs, Fn&& fn) {
 
 // "all" or a comma-separated list of scene names.
 std::vector<std::string> bench_scene_list(const std::string& text);
+
+// The frame a stage times on: the scene's frame at t = 1/2 s, its geometry, and its G-buffer and motion layers
+// (what trace_layers adds to).
+struct BenchFrame {
+  FrameGeometry geometry;
+  Frame frame;
+};
+BenchFrame bench_frame(const Scene& scene, Size size);
 
 // One stage: prints a table on stdout and, when csv is set, appends rows "stage,scene,...,metric,value".
 void bench_raster(const BenchOptions& o, Size size, std::ostream* csv);

@@ -7,7 +7,6 @@
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
 #include "app/bench.h"
 #include "core/parallel.h"
-#include "motion/backproject.h"
 #include "motion/shadow.h"
 #include "motion/shadow_splat.h"
 #include "scenes/gltf_loader.h"
@@ -25,10 +24,9 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
   trmv_settings.trace.shading_samples = kTrmvShadingSamples;
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
-    const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
-    Frame frame(size.width, size.height);
-    write_gbuffer_layers(scene, g, frame);
-    write_motion_layers(scene, g, frame);
+    BenchFrame b = bench_frame(scene, size);
+    const FrameGeometry& g = b.geometry;
+    Frame& frame = b.frame;
     std::vector<double> trace_seconds;
     median_ms(o.warmup, o.runs, [&] { trace_seconds.push_back(trace_layers(scene, g, settings, frame).seconds); });
     const double trace_ms = 1e3 * median(trace_seconds);

@@ -7,7 +7,6 @@
 //   - the memory of one frame's planes as written to EXR.
 #include "app/bench.h"
 #include "core/parallel.h"
-#include "motion/backproject.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -60,10 +59,9 @@ void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
   const RenderSettings settings;  // 1 spp, seed 0, one indirect bounce: what a denoiser gets
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
-    const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
-    Frame frame(size.width, size.height);
-    write_gbuffer_layers(scene, g, frame);
-    write_motion_layers(scene, g, frame);
+    BenchFrame b = bench_frame(scene, size);
+    const FrameGeometry& g = b.geometry;
+    Frame& frame = b.frame;
     // The frame time (BVH build, tracing, writing the layers) and, inside it, the tracing loop alone.
     std::vector<double> loop_seconds;
     TraceStats stats;

@@ -10,6 +10,7 @@
 #include "app/bench.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "motion/backproject.h"
 #include "scenes/catalog.h"
 
 #include <memory>
@@ -24,6 +25,13 @@ std::vector<std::string> bench_scene_list(const std::string& text) {
   for (std::string name; std::getline(ss, name, ',');)
     if (!name.empty()) names.push_back(name);
   return names;
+}
+
+BenchFrame bench_frame(const Scene& scene, Size size) {
+  BenchFrame b{rasterize_frame(scene, int(scene.fps / 2), size.width, size.height), Frame(size.width, size.height)};
+  write_gbuffer_layers(scene, b.geometry, b.frame);
+  write_motion_layers(scene, b.geometry, b.frame);
+  return b;
 }
 
 namespace {

@@ -8,24 +8,17 @@
 
 #include "svgf_fixtures.h"
 
+#include "trmv_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
-#include <random>
 
 using namespace rtdr;
 
 namespace {
-
-RgbPlane noise_rgb(int w, int h, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  RgbPlane c(w, h);
-  for (auto& v : c.data) v = glm::vec3(u(rng), u(rng), u(rng));
-  return c;
-}
 
 // A temporal output whose history was not clamped anywhere: fetched = clamped.
 TrmvTemporalOutput unclamped(const RgbPlane& color) {

@@ -7,10 +7,11 @@
 
 #include "svgf_fixtures.h"
 
+#include "trmv_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <random>
 
 using namespace rtdr;
 
@@ -25,14 +26,6 @@ SurfacePlanes tilted_surface(int w, int h, float slope) {
       s.depth_grad.at(x, y) = glm::vec2(slope, 0.0f);
     }
   return s;
-}
-
-RgbPlane noise_rgb(int w, int h, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  RgbPlane c(w, h);
-  for (auto& v : c.data) v = glm::vec3(u(rng), u(rng), u(rng));
-  return c;
 }
 
 }  // namespace

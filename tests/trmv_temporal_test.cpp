@@ -5,22 +5,15 @@
 
 #include "core/error.h"
 
+#include "trmv_fixtures.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <random>
 
 using namespace rtdr;
 
 namespace {
-
-RgbPlane noise_rgb(int w, int h, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  RgbPlane c(w, h);
-  for (auto& v : c.data) v = glm::vec3(u(rng), u(rng), u(rng));
-  return c;
-}
 
 // Zero motion, every vector valid, a covered previous frame.
 TrmvMotion still(int w, int h) { return {Vec2Plane(w, h, glm::vec2(0.0f)), UIntPlane(w, h, 1u)}; }

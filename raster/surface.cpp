@@ -23,7 +23,7 @@ SurfaceTable::SurfaceTable(const Scene& scene, const ScenePose& pose) : scene_(s
     const bool textured = mat.base_color_texture >= 0 && !mesh.uvs.empty();
     meshes_.push_back({glm::vec3(mat.base_color), textured ? &scene.textures[size_t(mat.base_color_texture)] : nullptr,
                        mat.roughness, mat.metallic, mat.emissive * scene.emissive_strength(mat, pose.t),
-                       mesh.material >= 0 ? uint32_t(mesh.material) : kInvalidId});
+                       mat.double_sided, mesh.material >= 0 ? uint32_t(mesh.material) : kInvalidId});
   }
 }
 
@@ -59,8 +59,8 @@ SurfacePoint SurfaceTable::at(const SurfaceSample& s, const glm::vec3& viewer) c
   }
   p.roughness = m.roughness;
   p.metallic = m.metallic;
-  // Emitters are one-sided (trace/lights.h): only the front face, seen from the viewer, emits.
-  p.emission = p.front_face ? m.emission : glm::vec3(0.0f);
+  // A single-sided emitter emits from its front face only; a glTF doubleSided one from both (trace/lights.h).
+  p.emission = (p.front_face || m.double_sided) ? m.emission : glm::vec3(0.0f);
   p.material = m.material;
   return p;
 }

@@ -24,7 +24,8 @@ struct SurfacePoint {
   glm::vec3 albedo{0.0f};      // base colour times texture, linear rgb
   float roughness = 1.0f;
   float metallic = 0.0f;
-  glm::vec3 emission{0.0f};    // emissive * strength(t) when the viewer sees the front face, else 0 (trace/lights.h)
+  glm::vec3 emission{0.0f};    // emissive * strength(t) when the viewer sees an emitting face (the front, or
+                               // either face of a doubleSided material), else 0 (trace/lights.h)
   uint32_t mesh = kInvalidId;
   uint32_t material = kInvalidId;  // kInvalidId for glTF's default material
 };
@@ -44,6 +45,7 @@ class SurfaceTable {
     float roughness;
     float metallic;
     glm::vec3 emission;
+    bool double_sided;  // glTF doubleSided: both faces emit
     uint32_t material;
   };
   const Scene& scene_;

@@ -1,7 +1,8 @@
 // glTF materials -> Scene::materials and Scene::textures (glTF spec Sec. 3.9 "Materials").
 //
 // Read: baseColorFactor, baseColorTexture (its image decoded from sRGB to linear), metallicFactor,
-// roughnessFactor, emissiveFactor, KHR_materials_emissive_strength, and our animated emissive strength in
+// roughnessFactor, emissiveFactor, KHR_materials_emissive_strength, doubleSided (which faces emit; nothing
+// else: both faces are drawn and shaded regardless), and our animated emissive strength in
 // the material's extras "rtdr_emissive_strength" (format and reason in scenes/README.md). The other
 // textures (normal, occlusion, metallic-roughness, emissive) are ignored.
 #include "scenes/gltf_parts.h"
@@ -145,6 +146,8 @@ void load_materials(const Source& src, Scene& scene) {
       m.emissive_strength = checked(src, s.GetNumberAsDouble(), 0, HUGE_VAL, what + " emissiveStrength");
     }
     m.emissive_strength_track = emissive_strength_track(src, gm.extras, what);
+    // doubleSided (glTF spec Sec. 3.9.5, default false): a double-sided emitter emits from both faces.
+    m.double_sided = gm.doubleSided;
     scene.materials.push_back(std::move(m));
   }
 }

@@ -44,6 +44,10 @@ struct Material {
   float metallic = 1.0f;         // metallicFactor (glTF default 1)
   glm::vec3 emissive{0.0f};      // emissiveFactor, linear, each in [0, 1]
   float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  // glTF `doubleSided` (default false). RTDR reads it for emission only: a double-sided emitter emits from both
+  // faces, as Blender and Cycles do; a single-sided one from its counter-clockwise front face (scenes/README.md).
+  // Both faces of every triangle are drawn and shaded either way.
+  bool double_sided = false;
   // An animated emissive strength (a flickering light): material extras "rtdr_emissive_strength",
   // documented in scenes/README.md. Empty when the strength is constant.
   Track<float> emissive_strength_track;

@@ -1,6 +1,8 @@
 // glTF metallic-roughness BRDF: evaluation, pdf and importance sampling. Formulas in brdf.h.
 #include "trace/brdf.h"
 
+#include "trace/ggx_albedo_table.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -59,6 +61,29 @@ glm::vec3 fresnel_schlick(glm::vec3 f0, float cos_theta) {
   return f0 + (glm::vec3(1.0f) - f0) * m5;
 }
 
+float dielectric_specular_albedo(float roughness, float mu) {
+  using namespace ggx_albedo_table;
+  // Bilinear between the table's entries: roughness i / (kRoughnessCount - 1), sqrt(mu) j / (kMuCount - 1)
+  // (the entries crowd towards grazing angles, where a smooth lobe's albedo changes fastest).
+  const float x = std::clamp(roughness, 0.0f, 1.0f) * float(kRoughnessCount - 1);
+  const float y = std::sqrt(std::clamp(mu, 0.0f, 1.0f)) * float(kMuCount - 1);
+  const int i = std::min(int(x), kRoughnessCount - 2), j = std::min(int(y), kMuCount - 2);
+  const float s = x - float(i), t = y - float(j);
+  const float lower = (1.0f - t) * kSpecularAlbedo[i][j] + t * kSpecularAlbedo[i][j + 1];
+  const float upper = (1.0f - t) * kSpecularAlbedo[i + 1][j] + t * kSpecularAlbedo[i + 1][j + 1];
+  return (1.0f - s) * lower + s * upper;
+}
+
+float dielectric_specular_albedo_average(float roughness) {
+  using namespace ggx_albedo_table;
+  // Linear in roughness, like the table: the average of the bilinear table is exactly this (the generator
+  // integrates each row as the lookup above interpolates it).
+  const float x = std::clamp(roughness, 0.0f, 1.0f) * float(kRoughnessCount - 1);
+  const int i = std::min(int(x), kRoughnessCount - 2);
+  const float s = x - float(i);
+  return (1.0f - s) * kAverageAlbedo[i] + s * kAverageAlbedo[i + 1];
+}
+
 void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
   const float sign = std::copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z);
@@ -76,6 +101,11 @@ Bsdf::Bsdf(const SurfaceBsdf& m, const glm::vec3& n, const glm::vec3& wo)
   const float spec = luminance(fresnel_schlick(f0_, std::max(0.0f, n_dot_v_)));
   const float diff = (1.0f - m.metallic) * luminance(m.base_color);
   p_spec_ = (m.metallic >= 1.0f || diff <= 0.0f) ? 1.0f : std::clamp(spec / (spec + diff), 0.1f, 0.9f);
+  // Albedo scaling [Kelemen and Szirmay-Kalos 2001; Kulla and Conty 2017]: the outgoing half of the diffuse
+  // weight, (1 - E_spec(n.v)) / (1 - E_avg); evaluate() multiplies by the incoming half, 1 - E_spec(n.l).
+  const float e_v = dielectric_specular_albedo(m.roughness, std::max(0.0f, n_dot_v_));
+  const float e_avg = dielectric_specular_albedo_average(m.roughness);
+  diffuse_v_ = (1.0f - m.metallic) * m.base_color * ((1.0f - e_v) / (kPi * (1.0f - e_avg)));
 }
 
 BsdfEval Bsdf::evaluate(const glm::vec3& wi) const {
@@ -88,12 +118,14 @@ BsdfEval Bsdf::evaluate(const glm::vec3& wi) const {
   // Height-correlated Smith masking-shadowing (Heitz 2014, Eq. 99).
   const float G2 = 1.0f / (1.0f + lambda_v_ + ggx_lambda(n_dot_l, alpha_));
   BsdfEval e;
-  // The diffuse lobe keeps what the specular interface lets through on the way in and on the way out, the
-  // reciprocal coupling of Ashikhmin and Shirley 2000 (Eq. 5's (1 - F) factors) with Schlick's F at n.v and
-  // n.l. glTF's fresnel_mix weights it by 1 - F(v.h) instead, which returns up to 1.85x the incident
-  // energy at grazing angles (tests/trace_brdf_test.cpp, ENERGY); see "Deviations" in trace/README.md.
-  const glm::vec3 transmitted = (glm::vec3(1.0f) - fresnel_schlick(f0_, n_dot_v_)) * (glm::vec3(1.0f) - fresnel_schlick(f0_, n_dot_l));
-  e.f.diffuse = transmitted * (1.0f - m_.metallic) * m_.base_color / kPi;
+  // The diffuse lobe gets what the dielectric's specular lobe does not reflect, on the way out and on the way
+  // in: f_d = (1 - metallic) base / pi (1 - E_spec(n.v)) (1 - E_spec(n.l)) / (1 - E_avg), the albedo scaling
+  // of Kelemen and Szirmay-Kalos 2001 (Kulla and Conty 2017). Its directional albedo is base (1 - E_spec(n.v)),
+  // so the dielectric's is base + (1 - base) E_spec(n.v) <= 1. glTF's fresnel_mix (1 - F(v.h)) returns up to
+  // 1.85x the incident energy at grazing angles (tests/trace_brdf_test.cpp, ENERGY), and the coupling
+  // (1 - F(n.v)) (1 - F(n.l)) of Ashikhmin and Shirley 2000 that replaced it lost 10% at roughness 1 (a diffuse
+  // room 11-12% darker than Cycles); see "Deviations and choices" in trace/README.md.
+  e.f.diffuse = diffuse_v_ * (1.0f - dielectric_specular_albedo(m_.roughness, n_dot_l));
   e.f.specular = F * (D * G2 / (4.0f * n_dot_v_ * n_dot_l));
   // The mixture's pdf: cosine-weighted diffuse, and for the specular lobe the density of reflecting about a
   // visible normal, D_v(h) / (4 v.h) = G1(v) D(h) / (4 n.v) (Heitz 2018, Eq. 17).

@@ -3,8 +3,19 @@
 // shadowing term and Schlick's Fresnel.
 //
 //   f = f_diffuse + f_specular
-//   f_diffuse  = (1 - F(n.v)) (1 - F(n.l)) (1 - metallic) base / pi     (energy-bounded coupling, see brdf.cpp)
+//   f_diffuse  = (1 - metallic) base / pi (1 - E_spec(n.v)) (1 - E_spec(n.l)) / (1 - E_avg)   (albedo scaling)
 //   f_specular = F(v.h) D(h) G2(v, l) / (4 |n.v| |n.l|),  F0 = mix(0.04, base, metallic),  alpha = roughness^2
+//
+// The diffuse lobe is scaled by what the dielectric's specular lobe (F0 = 0.04) does not reflect: E_spec(mu)
+// is that lobe's directional albedo, E_avg = 2 int_0^1 E_spec(mu) mu dmu its cosine-weighted average, both from
+// a table (trace/ggx_albedo_table.h, made by tools/make_ggx_albedo_table.py). This is the albedo scaling of
+// Kelemen and Szirmay-Kalos 2001 ("A Microfacet Based Coupled Specular-Matte BRDF Model with Importance
+// Sampling", its matte term) as Kulla and Conty 2017 ("Revisiting Physically Based Shading at Imageworks",
+// the albedo-scaling layering of a diffuse base under a specular coat) use it: reciprocal, since it is
+// symmetric in n.v and n.l, and the dielectric's directional albedo is exactly
+//   E(mu_o) = E_spec(mu_o) + base (1 - E_spec(mu_o)) = base + (1 - base) E_spec(mu_o)   (metallic 0),
+// at most 1, and equal to base wherever the specular lobe reflects little. Why and what differs from glTF and
+// Cycles: trace/README.md, "Deviations and choices".
 //
 // The two lobes are kept apart (eval returns both) so the path tracer can split diffuse from glossy
 // light exactly, as the motion-vector work of [TRMV21 Sec. 4] needs. Directions point away from the
@@ -50,6 +61,13 @@ float ggx_d(float cos_theta_h, float alpha);
 float ggx_lambda(float cos_theta, float alpha);
 // Schlick's Fresnel approximation.
 glm::vec3 fresnel_schlick(glm::vec3 f0, float cos_theta);
+// E_spec(roughness, mu): the directional albedo of the dielectric's specular lobe (F0 = 0.04) seen at n.v = mu,
+// bilinear in (roughness, sqrt(mu)) between the entries of trace/ggx_albedo_table.h (each clamped to [0, 1]);
+// within 2e-4 of the lobe's albedo at roughness >= 0.1 (tests/trace_brdf_test.cpp), and never below it by more
+// than the quadrature's error near grazing angles (tools/make_ggx_albedo_table.py).
+float dielectric_specular_albedo(float roughness, float mu);
+// E_avg(roughness) = 2 int_0^1 E_spec(roughness, mu) mu dmu, of the same (piecewise-linear) table.
+float dielectric_specular_albedo_average(float roughness);
 
 // The BSDF at one shading point for one outgoing direction wo: everything that depends only on the
 // material, n and wo (the tangent frame, alpha, F0, Lambda(wo), the lobe choice) is computed once, as pbrt's
@@ -71,6 +89,7 @@ class Bsdf {
   glm::vec3 n_, wo_, t_, b_;  // shading normal, outgoing direction, tangent frame
   glm::vec3 f0_;
   float n_dot_v_, alpha_, lambda_v_, p_spec_;
+  glm::vec3 diffuse_v_;  // (1 - metallic) base / pi (1 - E_spec(n.v)) / (1 - E_avg): f_diffuse without the n.l factor
 };
 
 // One-shot forms of the above, for tests and single queries.

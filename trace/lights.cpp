@@ -50,13 +50,15 @@ LightSet::LightSet(const Scene& scene, const ScenePose& pose, const ScenePose& c
       e.area = triangle_area(p);
       e.normal = e.area > 0.0f ? glm::cross(e.p1 - e.p0, e.p2 - e.p0) / (2.0f * e.area) : glm::vec3(0.0f, 1.0f, 0.0f);
       e.radiance = radiance;
+      e.double_sided = material.double_sided;
       e.instance = uint32_t(i);
       e.triangle = uint32_t(t);
       lights_.push_back(e);
-      // Power of a one-sided Lambertian emitter: Phi = pi * A * L (luminance, so the choice follows brightness).
-      // (With choice = pose, area_at_choice is e.area, bit for bit.)
+      // Power of a Lambertian emitter: Phi = pi * A * L per emitting face (luminance, so the choice follows
+      // brightness); a double-sided triangle has two. (With choice = pose, area_at_choice is e.area, bit for bit.)
       const float area_at_choice = triangle_area(world_triangle(mesh, t, choice.instance_to_world[i]));
-      power.push_back(std::numbers::pi * double(area_at_choice) * double(luminance(radiance_at_choice)));
+      const double faces = e.double_sided ? 2.0 : 1.0;
+      power.push_back(faces * std::numbers::pi * double(area_at_choice) * double(luminance(radiance_at_choice)));
     }
   }
   double total = 0.0;
@@ -90,6 +92,7 @@ LightSample LightSet::point_on(int l, glm::vec2 u_point) const {
   ls.radiance = e.radiance;
   ls.pdf_area = area_pdf(size_t(l));
   ls.light = l;
+  ls.double_sided = e.double_sided;
   return ls;
 }
 

@@ -1,9 +1,10 @@
 // The area lights of one frame: every triangle whose material emits, in world space at the pose's time,
 // with a table for choosing one in proportion to its power [SVGF17 Sec. 3: next-event estimation].
 //
-// Emitters are one-sided Lambertian: a triangle emits radiance Le = emissive * strength(t) from its front
-// face (counter-clockwise winding, glTF's front) into the hemisphere around its geometric normal. Its
-// power is Phi = pi * A * luminance(Le).
+// Emitters are Lambertian: a triangle emits radiance Le = emissive * strength(t) from its front face
+// (counter-clockwise winding, glTF's front) into the hemisphere around its geometric normal, and, when its
+// material is glTF `doubleSided`, from its back face too (as Blender and Cycles emit; scenes/README.md). Its
+// power is Phi = pi * A * luminance(Le) per emitting face: twice that for a double-sided triangle.
 //
 // The choice may follow another frame's powers than the one shaded (the `choice` pose): A-SVGF re-shades a
 // gradient sample with the random numbers of the frame its seed was made in, and the same numbers pick the same
@@ -17,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +29,7 @@ struct EmissiveTriangle {
   glm::vec3 normal;      // unit front-face normal, (p1 - p0) x (p2 - p0) normalised
   float area;
   glm::vec3 radiance;    // Le
+  bool double_sided;     // emits from both faces (glTF doubleSided), else from the front face only
   uint32_t instance, triangle;
 };
 
@@ -36,6 +39,14 @@ struct LightSample {
   glm::vec3 radiance;
   float pdf_area;   // probability density per unit area of choosing this point (light choice included)
   int light;        // index into LightSet::lights
+  bool double_sided = false;  // the light emits from both faces
+
+  // cos(theta_y) of a unit direction w leaving the light point: n.w for a one-sided emitter (0 or less when w
+  // leaves its back, which does not emit), |n.w| for a double-sided one.
+  float emitted_cosine(const glm::vec3& w) const {
+    const float c = glm::dot(normal, w);
+    return double_sided ? std::abs(c) : c;
+  }
 };
 
 class LightSet {

@@ -53,7 +53,7 @@ LightConnection connect_to_light(const TraceContext& c, const SurfacePoint& x, c
   const glm::vec3 to_light = ls.position - x.position;
   const float dist2 = glm::dot(to_light, to_light);
   const glm::vec3 wi = to_light / std::sqrt(dist2);
-  const float cos_light = glm::dot(ls.normal, -wi);  // one-sided emitter: only its front face emits
+  const float cos_light = ls.emitted_cosine(-wi);  // 0 or less behind a one-sided emitter (trace/lights.h)
   const float cos_surface = glm::dot(x.normal, wi);
   if (cos_light <= 0.0f || cos_surface <= 0.0f || glm::dot(x.geo_normal, wi) <= 0.0f || ls.pdf_area <= 0.0f)
     return out;
@@ -89,7 +89,8 @@ LightConnection connect_to_light(const TraceContext& c, const SurfacePoint& x, c
 // against light sampling, which could have chosen the same point.
 glm::vec3 emission_hit(const TraceContext& c, const SurfacePoint& x, const SurfacePoint& y, const Hit& hit,
                        float pdf_bsdf) {
-  if (luminance(y.emission) <= 0.0f) return glm::vec3(0.0f);  // not an emitter, or its back (raster/surface.h)
+  // Not an emitter, or the back of a single-sided one (raster/surface.h); a double-sided one emits from both.
+  if (luminance(y.emission) <= 0.0f) return glm::vec3(0.0f);
   const glm::vec3 d = y.position - x.position;
   const float cos_light = std::abs(glm::dot(y.geo_normal, glm::normalize(d)));
   const float pdf_light = cos_light > 0.0f ? c.lights.pdf_area(hit.instance, hit.triangle) * glm::dot(d, d) / cos_light : 0.0f;

@@ -3,7 +3,7 @@
 // Pass: direct_shading(context, G, eye, seed, samples) -> S(x_0, wo), per pixel, before demodulation.
 //   in:  the frame's lights and materials (TraceContext), the primary surface sample G, the eye, the pixel seed
 //   out: S = int_A Le(y) f(wo, wi) cos(theta_x) cos(theta_y) / |y - x|^2 dA(y), the whole unshadowed direct
-//        integral over every emitter's front face, wi = unit(y - x): no visibility V(x, y), no MIS weight
+//        integral over every emitter's emitting faces (its front, or both when doubleSided), wi = unit(y - x): no visibility V(x, y), no MIS weight
 //
 // TRMV splits the output into shading (direct illumination without shadows), visibility, glossy and other
 // indirect light [TRMV21 Sec. 4], filters the noisy ones, and assumes that the shading part "can already be
@@ -67,7 +67,7 @@ glm::vec3 unshadowed_direct(const LightSet& lights, const SurfacePoint& x, uint3
     const float dist2 = glm::dot(d, d);
     if (!(dist2 > 0.0f) || !(ls.pdf_area > 0.0f)) continue;
     const glm::vec3 wi = d / std::sqrt(dist2);
-    const float cos_light = -glm::dot(ls.normal, wi);  // one-sided emitter: only its front face emits
+    const float cos_light = ls.emitted_cosine(-wi);  // 0 or less behind a one-sided emitter (trace/lights.h)
     const float cos_surface = glm::dot(x.normal, wi);
     if (!(cos_light > 0.0f) || !(cos_surface > 0.0f) || !(glm::dot(x.geo_normal, wi) > 0.0f)) continue;
     // Le f cos(theta_x) cos(theta_y) / (r^2 p_A): the area form of the light integral [TRMV21 Sec. 4.3].

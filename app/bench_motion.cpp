@@ -15,6 +15,18 @@
 #include <cstdio>
 
 namespace rtdr {
+namespace {
+
+// The median of trace_layers' own tracing time (TraceStats::seconds) over o.runs runs, after o.warmup untimed ones.
+double median_trace_loop_ms(const BenchOptions& o, const Scene& scene, const FrameGeometry& g,
+                            const RenderSettings& settings, Frame& frame) {
+  for (int i = 0; i < o.warmup; ++i) trace_layers(scene, g, settings, frame);
+  std::vector<double> seconds;
+  for (int i = 0; i < o.runs; ++i) seconds.push_back(trace_layers(scene, g, settings, frame).seconds);
+  return 1e3 * median(seconds);
+}
+
+}  // namespace
 
 void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
   std::printf("%-14s %9s %9s %10s %9s %10s %7s %11s %8s   (median of %d runs, %d threads)\n", "scene", "size",
@@ -27,12 +39,8 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     BenchFrame b = bench_frame(scene, size);
     const FrameGeometry& g = b.geometry;
     Frame& frame = b.frame;
-    std::vector<double> trace_seconds;
-    median_ms(o.warmup, o.runs, [&] { trace_seconds.push_back(trace_layers(scene, g, settings, frame).seconds); });
-    const double trace_ms = 1e3 * median(trace_seconds);
-    std::vector<double> trmv_seconds;
-    median_ms(o.warmup, o.runs, [&] { trmv_seconds.push_back(trace_layers(scene, g, trmv_settings, frame).seconds); });
-    const double trmv_trace_ms = 1e3 * median(trmv_seconds);
+    const double trace_ms = median_trace_loop_ms(o, scene, g, settings, frame);
+    const double trmv_trace_ms = median_trace_loop_ms(o, scene, g, trmv_settings, frame);
     std::vector<ShadowMotion> shadow;
     const double shadow_ms = median_ms(o.warmup, o.runs, [&] { shadow = shadow_motion(g, frame); });
     const std::vector<glm::vec2> surface = frame.get_vec2("motion");

@@ -21,6 +21,10 @@ const T& at_clamped(const Plane<T>& p, int x, int y) {
 
 inline bool inside(const auto& p, int x, int y) { return x >= 0 && y >= 0 && x < p.width && y < p.height; }
 
+// Whether plane p is w x h; and whether it is w x h or empty (width 0), which a pass reads as "not given".
+inline bool has_size(const auto& p, int w, int h) { return p.width == w && p.height == h; }
+inline bool empty_or_size(const auto& p, int w, int h) { return p.width == 0 || has_size(p, w, h); }
+
 // Frame layers <-> planes: "direct" <-> direct.R/G/B, "normal" <-> normal.X/Y/Z (see docs/buffers.md).
 RgbPlane rgb_plane(const Frame& frame, const std::string& layer);
 RgbPlane xyz_plane(const Frame& frame, const std::string& layer);

@@ -71,6 +71,17 @@ double Method::time_pass(const std::string& pass, const std::function<void()>& r
   return ms;
 }
 
+InputChannels common_input_channels(const std::vector<std::string>& illumination) {
+  InputChannels c;
+  c.floats = {"depth.Z",  "depth.dX", "depth.dY", "normal.X",   "normal.Y",   "normal.Z",  "motion.X",
+              "motion.Y", "albedo.R", "albedo.G", "albedo.B",   "emission.R", "emission.G", "emission.B"};
+  c.floats.insert(c.floats.end(), illumination.begin(), illumination.end());
+  c.uints = {"id.mesh"};
+  for (const char* channel : {"emission.R", "emission.G", "emission.B", "indirect.R", "indirect.G", "indirect.B"})
+    c.defaults[channel] = 0.0f;
+  return c;
+}
+
 void fill_input_defaults(Frame& frame, const InputChannels& channels) {
   for (const auto& [name, value] : channels.defaults)
     if (!frame.has(name)) frame.add_float(name, value);

@@ -43,6 +43,10 @@ struct InputChannels {
   // (docs/buffers.md, "Feeding your engine's frames"): what an engine without them would write.
   std::map<std::string, float> defaults;
 };
+// What every method reads: the G-buffer (SurfacePlanes::from_frame), albedo and emission, then `illumination` (the
+// method's own noisy channels), and id.mesh; emission and indirect light default to 0 (an engine with no emitters
+// in view has no emission; one that does not split its illumination puts it all in `direct`).
+InputChannels common_input_channels(const std::vector<std::string>& illumination);
 // Adds every channel of channels.defaults that `frame` lacks, filled with its default. Callers that hand a
 // user's frame to Method::filter call it first (rtdr filter, probe and compare do, through app/sequence.h).
 void fill_input_defaults(Frame& frame, const InputChannels& channels);

@@ -35,19 +35,22 @@ const char* const kXYZ[3] = {"X", "Y", "Z"};
 struct RadianceLayers {
   Channels3 direct, indirect, unshadowed, indirect_diffuse, indirect_glossy;
   std::optional<Channels3> shading;  // only when TraceOptions::shading_samples > 0
+  uint32_t shading_samples = 0;      // its light samples per pixel at this frame's spp (shading_sample_count)
   FloatPlane& visibility;
   UIntPlane& seed;
   Channels3 light, blocker, secondary, direction;
   UIntPlane &light_id, &blocker_id, &secondary_id;
 
-  RadianceLayers(Frame& f, bool with_shading)
+  RadianceLayers(Frame& f, const RenderSettings& settings)
       : direct(f, "direct", kRGB), indirect(f, "indirect", kRGB), unshadowed(f, "direct.unshadowed", kRGB),
         indirect_diffuse(f, "indirect.diffuse", kRGB), indirect_glossy(f, "indirect.glossy", kRGB),
         visibility(f.add_float("direct.visibility")), seed(f.add_uint("rng.seed")), light(f, "path.light", kXYZ),
         blocker(f, "path.blocker", kXYZ), secondary(f, "path.secondary", kXYZ), direction(f, "path.direction", kXYZ),
         light_id(f.add_uint("path.light.instance", kInvalidId)), blocker_id(f.add_uint("path.blocker.instance", kInvalidId)),
         secondary_id(f.add_uint("path.secondary.instance", kInvalidId)) {
-    if (with_shading) shading.emplace(f, "direct.shading", kRGB);
+    if (settings.trace.shading_samples <= 0) return;
+    shading.emplace(f, "direct.shading", kRGB);
+    shading_samples = shading_sample_count(settings.trace.shading_samples, settings.spp);
   }
 
   void set_record(size_t i, const PathRecord& r) {
@@ -87,10 +90,8 @@ uint32_t trace_pixel(const TraceContext& c, const SurfaceSample& s, const glm::v
   out.unshadowed.set(i, unshadowed * scale);
   out.indirect_diffuse.set(i, diffuse * scale);
   out.indirect_glossy.set(i, glossy * scale);
-  if (out.shading) {
-    const uint32_t shading_samples = shading_sample_count(c.options.shading_samples, spp);
-    out.shading->set(i, direct_shading(c, s, eye, seed, shading_samples) / demodulation_factor(albedo));
-  }
+  if (out.shading)
+    out.shading->set(i, direct_shading(c, s, eye, seed, out.shading_samples) / demodulation_factor(albedo));
   out.visibility.data[i] = visibility / float(spp);
   return rays;
 }
@@ -117,7 +118,7 @@ TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const Render
   std::map<int, TraceContext> contexts;
   for (const auto& [f, set] : lights) contexts.emplace(f, TraceContext{scene, g.pose, embree, set, surfaces, settings.trace});
 
-  RadianceLayers layers(frame, settings.trace.shading_samples > 0);
+  RadianceLayers layers(frame, settings);
   // Rays per second measure the tracing loop alone (not the BVH build or Embree's one-time start-up).
   const auto start = std::chrono::steady_clock::now();
   std::vector<uint64_t> rays_per_row(size_t(height), 0);  // summed after the loop: no shared counter

@@ -149,17 +149,11 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
 }
 
 InputChannels svgf_input_channels(const SvgfOptions& options) {
-  InputChannels c;
-  c.floats = {"depth.Z",  "depth.dX",   "depth.dY",   "normal.X",   "normal.Y",   "normal.Z",   "motion.X",
-              "motion.Y", "albedo.R",   "albedo.G",   "albedo.B",   "emission.R", "emission.G", "emission.B",
-              "direct.R", "direct.G",   "direct.B",   "indirect.R", "indirect.G", "indirect.B"};
+  // Both streams; without an indirect layer the indirect stream is filtered as black.
+  InputChannels c =
+      common_input_channels({"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B"});
   if (options.spatial == SpatialFilter::Eaw)
     for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
-  c.uints = {"id.mesh"};
-  // An engine with no emitters in view has no emission; one that does not split its illumination puts it all in
-  // `direct`, and the indirect stream is then filtered as black.
-  for (const char* channel : {"emission.R", "emission.G", "emission.B", "indirect.R", "indirect.G", "indirect.B"})
-    c.defaults[channel] = 0.0f;
   if (options.adaptive) {  // the gradient samples of trace/gradients.h
     c.floats.push_back("gradient.prev_direct");
     c.floats.push_back("gradient.prev_indirect");

@@ -48,8 +48,7 @@ TrmvCleanupWeights trmv_cleanup_weights_pixel(const TrmvTemporalOutput& temporal
 TrmvCleanupOutput trmv_cleanup_pass(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v,
                                     const SurfacePlanes& s, const TrmvParams& params, const SvgfParams& edges) {
   const int w = temporal.color.width, h = temporal.color.height;
-  const auto sized = [&](const auto& p) { return p.width == w && p.height == h; };
-  if (!sized(temporal.fetched) || !sized(temporal.clamped) || !(alpha_v.width == 0 || sized(alpha_v)))
+  if (!has_size(temporal.fetched, w, h) || !has_size(temporal.clamped, w, h) || !empty_or_size(alpha_v, w, h))
     throw Error("trmv clean-up pass: the histories and alpha^V are not all " + std::to_string(w) + "x" +
                 std::to_string(h) + " like cbar_i");
   TrmvCleanupOutput out{RgbPlane(), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};

@@ -19,18 +19,13 @@ namespace {
 // point; relative to 1 + |s_i| so that points near the origin get an absolute 1e-6.
 constexpr float kFalloffSamePointRelative = 1e-6f;
 
-template <class P>
-bool sized(const P& p, int w, int h) {
-  return p.width == w && p.height == h;
-}
-
 void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
   const int w = r.position.width, h = r.position.height;
-  const bool valid_ok = shadow.valid.width == 0 || sized(shadow.valid, w, h);
-  if (!sized(r.normal, w, h) || !sized(r.mesh, w, h) || !sized(shadow.motion, w, h) || !valid_ok)
+  if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(shadow.motion, w, h) ||
+      !empty_or_size(shadow.valid, w, h))
     throw Error("trmv falloff pass: the receiver's and the shadow motion's planes are not all " + std::to_string(w) +
                 "x" + std::to_string(h));
-  if (prev.position.width != 0 && !sized(prev.mesh, prev.position.width, prev.position.height))
+  if (prev.position.width != 0 && !has_size(prev.mesh, prev.position.width, prev.position.height))
     throw Error("trmv falloff pass: the previous id.mesh is not the previous position's size");
 }
 

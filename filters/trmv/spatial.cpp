@@ -13,8 +13,8 @@ namespace rtdr {
 namespace {
 
 void check_sizes(int w, int h, const SurfacePlanes& s, const char* what) {
-  const bool ok = s.depth.width == w && s.depth.height == h && s.depth_grad.width == w && s.depth_grad.height == h &&
-                  s.normal.width == w && s.normal.height == h && s.mesh.width == w && s.mesh.height == h;
+  const bool ok = has_size(s.depth, w, h) && has_size(s.depth_grad, w, h) && has_size(s.normal, w, h) &&
+                  has_size(s.mesh, w, h);
   if (!ok)
     throw Error(std::string(what) + ": the G-buffer planes are not all " + std::to_string(w) + "x" +
                 std::to_string(h) + " like the filtered plane");

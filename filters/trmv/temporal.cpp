@@ -12,20 +12,14 @@
 namespace rtdr {
 namespace {
 
-template <class P>
-bool sized(const P& p, int w, int h) {
-  return p.width == w && p.height == h;
-}
-
 void check_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion, const TrmvHistory& prev,
                  const FloatPlane& alpha) {
   const int w = filtered.width, h = filtered.height;
-  const bool valid_ok = motion.valid.width == 0 || sized(motion.valid, w, h);
-  const bool alpha_ok = alpha.width == 0 || sized(alpha, w, h);
-  if (!sized(mesh, w, h) || !sized(motion.motion, w, h) || !valid_ok || !alpha_ok)
+  if (!has_size(mesh, w, h) || !has_size(motion.motion, w, h) || !empty_or_size(motion.valid, w, h) ||
+      !empty_or_size(alpha, w, h))
     throw Error("trmv temporal pass: the mesh, motion, validity and alpha planes are not all " + std::to_string(w) +
                 "x" + std::to_string(h) + " like c~");
-  if (prev.color.width != 0 && !sized(prev.mesh, prev.color.width, prev.color.height))
+  if (prev.color.width != 0 && !has_size(prev.mesh, prev.color.width, prev.color.height))
     throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
 }
 

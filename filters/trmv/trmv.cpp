@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace rtdr {
 namespace {
@@ -30,16 +31,12 @@ RgbPlane shade(const RgbPlane& shading, const RgbPlane& visibility) {
 }  // namespace
 
 InputChannels trmv_input_channels() {
-  InputChannels c;
-  c.floats = {"depth.Z",      "depth.dX",     "depth.dY",     "normal.X",     "normal.Y",     "normal.Z",
-              "motion.X",     "motion.Y",     "albedo.R",     "albedo.G",     "albedo.B",     "emission.R",
-              "emission.G",   "emission.B",   "indirect.R",   "indirect.G",   "indirect.B",   "position.X",
-              "position.Y",   "position.Z",   "geonormal.X",  "geonormal.Y",  "geonormal.Z",  "direct.shading.R",
-              "direct.shading.G", "direct.shading.B", "direct.visibility", "motion.shadow_splat.X",
-              "motion.shadow_splat.Y"};
-  c.uints = {"id.mesh", "motion.shadow_splat.valid"};
-  for (const char* channel : {"emission.R", "emission.G", "emission.B", "indirect.R", "indirect.G", "indirect.B"})
-    c.defaults[channel] = 0.0f;
+  // Not `direct`: its direct light is the shading term times the filtered visibility.
+  InputChannels c = common_input_channels(
+      {"indirect.R", "indirect.G", "indirect.B", "position.X", "position.Y", "position.Z", "geonormal.X",
+       "geonormal.Y", "geonormal.Z", "direct.shading.R", "direct.shading.G", "direct.shading.B", "direct.visibility",
+       "motion.shadow_splat.X", "motion.shadow_splat.Y"});
+  c.uints.push_back("motion.shadow_splat.valid");
   return c;
 }
 
@@ -60,7 +57,7 @@ const RgbPlane& TrmvFilter::filter_component(Component& c) {
   // 1. The spatial filter of the current frame: c~_i.
   time_pass("trmv_spatial", [&] { c.filtered = trmv_spatial_pass(c.noisy, surface_, p, params_.svgf); });
   // 2-3. The history along the component's motion, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2, Sec. 5].
-  c.seen_history = c.history;
+  c.seen_history = std::move(c.history);  // replaced below by this frame's
   time_pass("trmv_temporal", [&] {
     c.temporal = trmv_temporal_pass(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p);
   });
@@ -87,7 +84,7 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
   // constant alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
   shadow_motion_ = {xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid")};
   receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
-  seen_prev_positions_ = prev_positions_;
+  seen_prev_positions_ = std::move(prev_positions_);  // replaced below by this frame's
   FloatPlane theta;
   visibility_.alpha = {};
   if (p.motion == 1)
@@ -170,9 +167,10 @@ const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) co
 
 Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int) const {
   const std::vector<std::string> passes = probe_passes();
-  if (std::find(passes.begin(), passes.end(), pass) == passes.end()) find_pass(pass);  // throws for an unknown pass
-  if (std::find(passes.begin(), passes.end(), pass) == passes.end())
+  if (std::find(passes.begin(), passes.end(), pass) == passes.end()) {
+    find_pass(pass);  // throws, listing the passes, when there is no such pass at all
     throw Error("method trmv does not run pass '" + pass + "' with these parameters");
+  }
   if (surface_.width() == 0) throw Error("probe: no frame has been filtered yet");
   if (x < 0 || y < 0 || x >= surface_.width() || y >= surface_.height())
     throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +

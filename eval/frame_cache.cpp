@@ -15,7 +15,8 @@ namespace {
 // Bump when the meaning of rendered layers changes, so old cache entries are not reused.
 // 2: frames gained TRMV's shadow motion (motion.shadow, motion.shadow_splat); direct.shading, when rendered, is in
 // the key ("-shading64"). 3: the energy-preserving dielectric (trace/brdf.h) and double-sided emitters.
-constexpr int kCacheVersion = 3;
+// 4: frames gained the dual motion vector (motion.dual, motion/dual.h).
+constexpr int kCacheVersion = 4;
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): a small, well-spread hash of the scene file's bytes.
 uint64_t fnv1a(const std::string& bytes) {

@@ -6,7 +6,6 @@
 #include "core/parallel.h"
 #include "motion/backproject.h"
 #include "motion/forward_project.h"
-#include "motion/shadow.h"
 #include "trace/sampler.h"
 
 #include <map>
@@ -207,7 +206,7 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
   write_gbuffer_layers(scene, g, frame);
   write_motion_layers(scene, g, frame);
   const TraceStats traced = trace_layers(scene, g, settings, frame, rows_done, &seeds);
-  write_shadow_motion_layers(g, frame);
+  write_path_motion_layers(scene, g, frame);
   if (stats) *stats = traced;
   frame.add_uint("rng.seed_frame").data = seed_frame;
 

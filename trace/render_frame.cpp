@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "motion/backproject.h"
+#include "motion/dual.h"
 #include "motion/shadow.h"
 #include "trace/sampler.h"
 #include "trace/shading.h"
@@ -140,6 +141,11 @@ TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const Render
   return stats;
 }
 
+void write_path_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame) {
+  write_shadow_motion_layers(geometry, frame);      // from the path record just traced [TRMV21 Eq. 3]
+  write_dual_motion_layers(scene, geometry, frame);  // from the previous visibility buffer [TRMV21 Eq. 6]
+}
+
 Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,
                    TraceStats* stats, const RowsDone& rows_done) {
   const FrameGeometry geometry = rasterize_frame(scene, frame_index, width, height);
@@ -147,7 +153,7 @@ Frame render_frame(const Scene& scene, int frame_index, int width, int height, c
   write_gbuffer_layers(scene, geometry, frame);
   write_motion_layers(scene, geometry, frame);
   const TraceStats s = trace_layers(scene, geometry, settings, frame, rows_done);
-  write_shadow_motion_layers(geometry, frame);  // from the path record just traced [TRMV21 Eq. 3]
+  write_path_motion_layers(scene, geometry, frame);
   if (stats) *stats = s;
   return frame;
 }

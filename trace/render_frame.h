@@ -50,6 +50,11 @@ struct PixelSeeds {
 TraceStats trace_layers(const Scene& scene, const FrameGeometry& geometry, const RenderSettings& settings,
                         Frame& frame, const RowsDone& rows_done = {}, const PixelSeeds* seeds = nullptr);
 
+// TRMV's motion vectors, after trace_layers has recorded each pixel's path: the shadow vector and its splat
+// [TRMV21 Eq. 3] and the dual vector [TRMV21 Eq. 6] (motion/shadow.h, motion/dual.h). `frame` holds the
+// G-buffer, `motion` and the path.* layers of `geometry`'s frame.
+void write_path_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
+
 // A whole frame: G-buffer, motion and radiance layers.
 Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,
                    TraceStats* stats = nullptr, const RowsDone& rows_done = {});

@@ -1,10 +1,12 @@
 """Blender side of tools/compare_cycles.sh: imports a glTF file and renders it with Cycles, set up to match
 RTDR's estimator as far as Cycles allows. Run by the script as
 
-    blender -b (factory startup) -P tools/compare_cycles_blender.py -- SCENE.gltf OUT.exr WIDTH HEIGHT SPP BOUNCES [lambert]
+    blender -b (factory startup) -P tools/compare_cycles_blender.py -- SCENE.gltf OUT.exr WIDTH HEIGHT SPP BOUNCES [MATERIAL]
 
-With `lambert` every Principled BSDF is replaced by a Diffuse BSDF of roughness 0 (Lambert) plus its emission:
-a diagnosis of the BRDF difference (trace/README.md, "Differences from Cycles"), not a match of glTF.
+MATERIAL `principled` (the default) keeps the importer's Principled BSDF (v1 in Blender 3.4): what a Blender user
+sees. MATERIAL `lambert` replaces every Principled BSDF by a Diffuse BSDF of roughness 0 (Lambert, glTF's diffuse
+lobe) plus its emission: glTF's BRDF without its specular lobe. trace/README.md, "Differences from Cycles", has
+both measured, and why they differ (tools/principled_v1_albedo.py, tools/cycles_furnace_blender.py).
 
 Settings, and why each matches RTDR (trace/README.md, "Differences from Cycles", lists what does not):
 - an empty factory scene (no default cube, lamp or grey world) and a black world: RTDR has no environment light;
@@ -29,7 +31,10 @@ if "bool" not in numpy.__dict__:
 
 args = sys.argv[sys.argv.index("--") + 1:]
 scene_path, out_path, width, height, spp, bounces = args[:6]
-lambert = len(args) > 6 and args[6] == "lambert"
+cycles_material = args[6] if len(args) > 6 else "principled"
+if cycles_material not in ("principled", "lambert"):
+    sys.exit("compare_cycles: MATERIAL is principled or lambert, not " + cycles_material)
+lambert = cycles_material == "lambert"
 width, height, spp, bounces = int(width), int(height), int(spp), int(bounces)
 
 bpy.ops.wm.read_factory_settings(use_empty=True)

@@ -1,12 +1,16 @@
-// rtdr bench --stage motion: what TRMV's shadow motion adds to a 1-spp frame, per shipped scene at --size: the
-// median time of the shadow vector [TRMV21 Eq. 3] over every pixel (motion/shadow.h, from the frame's path record)
-// and of its splat [TRMV21 Sec. 4.1] (motion/shadow_splat.h), beside the 1-spp frame's tracing loop
+// rtdr bench --stage motion: what TRMV's motion vectors add to a 1-spp frame, per shipped scene at --size: the
+// median time of the shadow vector [TRMV21 Eq. 3] over every pixel (motion/shadow.h, from the frame's path record),
+// of its splat [TRMV21 Sec. 4.1] (motion/shadow_splat.h), of the dual vector [TRMV21 Eq. 6] (motion/dual.h, the
+// previous frame's rasterization included) and of the glossy vector [TRMV21 Eq. 5] (motion/glossy.h), beside the
+// 1-spp frame's tracing loop
 // (trace_layers' own time, TraceStats::seconds), and their sum as a share of it; and the same share of TRMV's own
 // input frame, which also traces the shading term direct.shading (kTrmvShadingSamples light samples a pixel,
 // trace/shading.h). Target: at most 5 % (the paper's vectors cost under 0.23 ms on a GPU [TRMV21 Fig. 13], inside
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "motion/dual.h"
+#include "motion/glossy.h"
 #include "motion/shadow.h"
 #include "motion/shadow_splat.h"
 #include "scenes/gltf_loader.h"
@@ -29,8 +33,9 @@ double median_trace_loop_ms(const BenchOptions& o, const Scene& scene, const Fra
 }  // namespace
 
 void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
-  std::printf("%-14s %9s %9s %10s %9s %10s %7s %11s %8s   (median of %d runs, %d threads)\n", "scene", "size",
-              "trace ms", "+shading", "shadow ms", "splat ms", "share", "of +shading", "valid", o.runs, thread_count());
+  std::printf("%-14s %9s %9s %10s %9s %9s %9s %9s %7s %11s %8s   (median of %d runs, %d threads)\n", "scene",
+              "size", "trace ms", "+shading", "shadow ms", "splat ms", "dual ms", "glossy ms", "share", "of +shading",
+              "valid", o.runs, thread_count());
   const RenderSettings settings;  // 1 spp, seed 0
   RenderSettings trmv_settings;   // and TRMV's input: with the shading term
   trmv_settings.trace.shading_samples = kTrmvShadingSamples;
@@ -47,13 +52,16 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     const double splat_ms = median_ms(o.warmup, o.runs, [&] {
       splat_shadow_motion(shadow, surface, g.vis.depth, size.width, size.height, kShadowSplatSize);
     });
+    const double dual_ms = median_ms(o.warmup, o.runs, [&] { dual_motion(scene, g, surface); });
+    const double glossy_ms = median_ms(o.warmup, o.runs, [&] { glossy_motion(g, frame); });
     size_t valid = 0;
     for (const ShadowMotion& m : shadow) valid += m.valid;
-    const double share = (shadow_ms + splat_ms) / trace_ms, valid_share = double(valid) / double(shadow.size());
-    const double trmv_share = (shadow_ms + splat_ms) / trmv_trace_ms;
-    std::printf("%-14s %4dx%-4d %9.1f %9.1f %10.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", name.c_str(), size.width,
-                size.height, trace_ms, trmv_trace_ms, shadow_ms, splat_ms, 100.0 * share, 100.0 * trmv_share,
-                100.0 * valid_share);
+    const double vectors_ms = shadow_ms + splat_ms + dual_ms + glossy_ms;
+    const double share = vectors_ms / trace_ms, valid_share = double(valid) / double(shadow.size());
+    const double trmv_share = vectors_ms / trmv_trace_ms;
+    std::printf("%-14s %4dx%-4d %9.1f %9.1f %9.2f %9.2f %9.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", name.c_str(),
+                size.width, size.height, trace_ms, trmv_trace_ms, shadow_ms, splat_ms, dual_ms, glossy_ms,
+                100.0 * share, 100.0 * trmv_share, 100.0 * valid_share);
     if (csv) {
       const std::string row = "motion," + name + ',' + std::to_string(size.width) + ',' +
                               std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';
@@ -62,6 +70,8 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
            << row << "share_with_shading," << trmv_share << '\n'
            << row << "shadow_ms," << shadow_ms << '\n'
            << row << "splat_ms," << splat_ms << '\n'
+           << row << "dual_ms," << dual_ms << '\n'
+           << row << "glossy_ms," << glossy_ms << '\n'
            << row << "share," << share << '\n'
            << row << "valid_share," << valid_share << '\n';
     }

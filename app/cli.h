@@ -12,7 +12,7 @@
 namespace rtdr {
 
 struct Cli {
-  CLI::App app{"rtdr: Real-Time Denoiser Reference (SVGF; A-SVGF and Temporally Reliable Motion Vectors planned)"};
+  CLI::App app{"rtdr: Real-Time Denoiser Reference (SVGF, A-SVGF and Temporally Reliable Motion Vectors)"};
   int threads = 0;                // --threads: worker threads, 0 = all cores
   std::vector<Command> commands;  // one per subcommand; run the one whose app->parsed()
 

@@ -4,7 +4,8 @@
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
 //   --stage gradients: a 1-spp frame with and without A-SVGF's gradient samples (bench_gradients.cpp)
-//   --stage motion: TRMV's shadow motion and its splat beside a 1-spp frame's tracing (bench_motion.cpp)
+//   --stage motion: TRMV's motion vectors (shadow, splat, dual, glossy) beside a 1-spp frame's tracing
+//                   (bench_motion.cpp)
 //   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
 //                   default stage when --backend is given
 #include "app/bench.h"

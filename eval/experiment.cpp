@@ -116,15 +116,15 @@ MethodSpec parse_method_spec(const std::string& text) {
       if (value_text != "fp32" && value_text != "fp16")
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
-    } else if (key == "motion" && (value_text == "traditional" || value_text == "shadow")) {
-      spec.trmv.motion = value_text == "shadow" ? 1 : 0;  // trmv_params.h's motion row, by name
+    } else if (key == "motion" && trmv_motion_from_name(value_text) >= 0) {
+      spec.trmv.motion = trmv_motion_from_name(value_text);  // trmv_params.h's motion row, by name
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
                !((spec.name == "trmv" && set_param(spec.trmv, key, value)) || set_param(spec.svgf, key, value) ||
                  set_param(spec.asvgf, key, value) || set_param(spec.trmv, key, value) ||
                  set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
                   "' is not parameter=value of svgf_params.h, asvgf_params.h, trmv_params.h or gradient_<row> of "
-                  "trace/gradients.h, motion=traditional|shadow, backend=cpu|vulkan or illumination=fp32|fp16");
+                  "trace/gradients.h, motion=traditional|shadow|dual|glossy|all, backend=cpu|vulkan or illumination=fp32|fp16");
     }
     spec.params += (spec.params.empty() ? "" : ":") + parts[i];
   }

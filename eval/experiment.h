@@ -44,7 +44,7 @@ struct MethodSpec {
   SvgfParams svgf;    // from the method's defaults (filters/method.h), then the spec's keys
   AsvgfParams asvgf;  // likewise; keys of all three tables are accepted
   TrmvParams trmv;    // likewise, and first for trmv (trmv:alpha=0.2 is TRMV's alpha, not SVGF's); and
-                      // motion=traditional|shadow, trmv's motion row by name
+                      // motion=traditional|shadow|dual|glossy|all, trmv's motion row by name
   std::string backend = "cpu";  // "cpu" or "vulkan"
   std::string illumination;     // backend=vulkan: "fp32", "fp16", or "" for the context's default
   // The gradient_<row> keys, row name without the prefix, in the order given: this method's own input.

@@ -15,7 +15,7 @@ namespace {
 // Bump when the meaning of rendered layers changes, so old cache entries are not reused.
 // 2: frames gained TRMV's shadow motion (motion.shadow, motion.shadow_splat); direct.shading, when rendered, is in
 // the key ("-shading64"). 3: the energy-preserving dielectric (trace/brdf.h) and double-sided emitters.
-// 4: frames gained the dual motion vector (motion.dual, motion/dual.h).
+// 4: frames gained the dual motion vector (motion.dual, motion/dual.h) and the cones' samples (path.incoming, path.pdf).
 constexpr int kCacheVersion = 4;
 
 // FNV-1a, 64 bits (Fowler, Noll, Vo): a small, well-spread hash of the scene file's bytes.

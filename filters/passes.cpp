@@ -73,8 +73,8 @@ const std::vector<PassDecl>& filter_passes() {
        {"exposure"},
        "L_w, L = exposure L_w, L_d = L / (1 + L), and the display colour"},
       {"trmv_spatial", "filters/trmv/spatial.cpp", "[TRMV21 Sec. 5]", PassScope::Frame,
-       "direct.visibility and indirect; depth.Z, depth.dX/dY, normal, id.mesh",
-       {&kTrmvVisibilitySpatial, &kTrmvIndirectSpatial},
+       "direct.visibility, indirect.diffuse and indirect.glossy; depth.Z, depth.dX/dY, normal, id.mesh",
+       {&kTrmvVisibilitySpatial, &kTrmvDiffuseSpatial, &kTrmvGlossySpatial},
        {"spatial_radius", "spatial_sigma", "sigma_z", "sigma_n", "epsilon"},
        "the vertical 1-D pass at the pixel (the second of the two): per tap G(k), w_z, w_n and the value, then the "
        "sum of the weights and the result"},
@@ -83,17 +83,25 @@ const std::vector<PassDecl>& filter_passes() {
        {&kTrmvTheta, &kTrmvAlphaV},
        {"alpha", "falloff_sigma", "motion"},
        "x^V_{i-1}, the previous surface point s^V_{i-1} there, s_i and n(s_i), theta, G and alpha^V"},
+      {"trmv_reshade", "filters/trmv/reshade.cpp", "[TRMV21 Eq. 11]", PassScope::Frame,
+       "path.direction, path.incoming, path.pdf; motion.dual and its validity; normal, depth, id.mesh, motion; last "
+       "frame's cones and normals",
+       {&kTrmvDiffuseReshaded},
+       {"alpha", "motion", "cones", "cone_half_angle", "spatial_radius", "spatial_sigma"},
+       "x^O, the normal there and the pixel's, the six transferred cones L'_k and the re-shaded L_o"},
       {"trmv_temporal", "filters/trmv/temporal.cpp", "[TRMV21 Eq. 2, Sec. 5]", PassScope::Frame,
-       "the trmv_spatial pass's c~; the component's motion (visibility: motion.shadow_splat, or motion; indirect: "
-       "motion); last frame's history and id.mesh; visibility: the trmv_falloff pass's alpha^V",
-       {&kTrmvVisibilityTemporal, &kTrmvVisibilityClamped, &kTrmvIndirectTemporal, &kTrmvIndirectClamped},
+       "the trmv_spatial pass's c~; the component's motion (visibility: motion.shadow_splat or motion; diffuse: "
+       "motion.dual or motion, and the trmv_reshade pass's history; glossy: motion.glossy or motion); last frame's "
+       "history and id.mesh; visibility: the trmv_falloff pass's alpha^V",
+       {&kTrmvVisibilityTemporal, &kTrmvVisibilityClamped, &kTrmvDiffuseTemporal, &kTrmvDiffuseClamped,
+        &kTrmvGlossyTemporal, &kTrmvGlossyClamped},
        {"alpha", "clamp_gamma", "clamp_radius", "motion"},
-       "x_{i-1}, each bilinear tap and its weight, the fetched history, the window's mu and sigma, the clamped "
-       "history, alpha and cbar_i"},
+       "x_{i-1}, each bilinear tap and its weight (or the re-shaded history), the fetched history, the window's mu "
+       "and sigma, the clamped history, alpha and cbar_i"},
       {"trmv_cleanup", "filters/trmv/cleanup.cpp", "[TRMV21 Eq. 7, Eq. 8, Sec. 5]", PassScope::Frame,
        "the trmv_temporal pass's cbar_i, fetched and clamped history; alpha^V; depth.Z, normal, id.mesh",
-       {&kTrmvWeightA, &kTrmvVisibilityWeightC, &kTrmvIndirectWeightC, &kTrmvVisibilityCleaned,
-        &kTrmvIndirectCleaned},
+       {&kTrmvWeightA, &kTrmvVisibilityWeightC, &kTrmvDiffuseWeightC, &kTrmvGlossyWeightC, &kTrmvVisibilityCleaned,
+        &kTrmvDiffuseCleaned, &kTrmvGlossyCleaned},
        {"alpha", "cleanup_size", "cleanup_sigma_max", "cleanup_eps", "history_after_cleanup"},
        "w_A, w_C and the clean-up's std at the pixel"},
       {"taa", "filters/taa/taa.cpp", "[Karis14]", PassScope::Frame,

@@ -100,39 +100,58 @@ inline constexpr LayerDecl kLambda{"filter.<s>.lambda", LayerType::Scalar, Layer
 inline constexpr LayerDecl kAlpha{"filter.<s>.alpha", LayerType::Scalar, LayerUse::Dump,
                                   "the temporal weight alpha_i from the largest lambda of the 3x3 strata around",
                                   "[ASVGF18 Eq. 15, Sec. 3.5]"};
-// TRMV's passes [TRMV21 Sec. 5] (filters/trmv/): one layer per component, visibility (scalar) and indirect (RGB).
+// TRMV's passes [TRMV21 Sec. 5] (filters/trmv/): one layer per component, visibility (scalar), diffuse and
+// glossy indirect light (RGB).
 inline constexpr LayerDecl kTrmvVisibilitySpatial{"filter.trmv.visibility.spatial", LayerType::Scalar, LayerUse::Dump,
                                                   "c~, the spatially filtered 1-spp visibility", "[TRMV21 Sec. 5]"};
-inline constexpr LayerDecl kTrmvIndirectSpatial{"filter.trmv.indirect.spatial", LayerType::Rgb, LayerUse::Dump,
-                                                "c~, the spatially filtered 1-spp indirect light", "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvDiffuseSpatial{"filter.trmv.diffuse.spatial", LayerType::Rgb, LayerUse::Dump,
+                                               "c~, the spatially filtered 1-spp diffuse indirect light",
+                                               "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvGlossySpatial{"filter.trmv.glossy.spatial", LayerType::Rgb, LayerUse::Dump,
+                                              "c~, the spatially filtered 1-spp glossy indirect light",
+                                              "[TRMV21 Sec. 5]"};
 inline constexpr LayerDecl kTrmvTheta{"filter.trmv.visibility.theta", LayerType::Scalar, LayerUse::Dump,
                                       "theta, radians, between n(s_i) and s_i -> s^V_{i-1}; pi/2 without evidence",
                                       "[TRMV21 Eq. 4]"};
 inline constexpr LayerDecl kTrmvAlphaV{"filter.trmv.visibility.alpha", LayerType::Scalar, LayerUse::Dump,
                                        "alpha^V = 1 - G(theta - pi/2; 0, 0.1) (1 - alpha)", "[TRMV21 Eq. 4]"};
+inline constexpr LayerDecl kTrmvDiffuseReshaded{"filter.trmv.diffuse.reshaded", LayerType::Rgb, LayerUse::Dump,
+                                                "the diffuse history re-shaded from the six cones at x^O where the "
+                                                "dual vector applies, else 0",
+                                                "[TRMV21 Eq. 11]"};
 inline constexpr LayerDecl kTrmvVisibilityTemporal{"filter.trmv.visibility.temporal", LayerType::Scalar,
                                                    LayerUse::Dump, "cbar_i, the blend of c~ and the clamped history",
                                                    "[TRMV21 Eq. 2]"};
 inline constexpr LayerDecl kTrmvVisibilityClamped{"filter.trmv.visibility.clamped", LayerType::Scalar, LayerUse::Dump,
                                                   "cbar*_{i-1}, the history clamped to mu +- gamma sigma of c~",
                                                   "[TRMV21 Sec. 5]"};
-inline constexpr LayerDecl kTrmvIndirectTemporal{"filter.trmv.indirect.temporal", LayerType::Rgb, LayerUse::Dump,
-                                                 "cbar_i, the blend of c~ and the clamped history", "[TRMV21 Eq. 2]"};
-inline constexpr LayerDecl kTrmvIndirectClamped{"filter.trmv.indirect.clamped", LayerType::Rgb, LayerUse::Dump,
-                                                "cbar*_{i-1}, the history clamped to mu +- gamma sigma of c~",
-                                                "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvDiffuseTemporal{"filter.trmv.diffuse.temporal", LayerType::Rgb, LayerUse::Dump,
+                                                "cbar_i, the blend of c~ and the clamped history", "[TRMV21 Eq. 2]"};
+inline constexpr LayerDecl kTrmvDiffuseClamped{"filter.trmv.diffuse.clamped", LayerType::Rgb, LayerUse::Dump,
+                                               "cbar*_{i-1}, the history clamped to mu +- gamma sigma of c~",
+                                               "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvGlossyTemporal{"filter.trmv.glossy.temporal", LayerType::Rgb, LayerUse::Dump,
+                                               "cbar_i, the blend of c~ and the clamped history", "[TRMV21 Eq. 2]"};
+inline constexpr LayerDecl kTrmvGlossyClamped{"filter.trmv.glossy.clamped", LayerType::Rgb, LayerUse::Dump,
+                                              "cbar*_{i-1}, the history clamped to mu +- gamma sigma of c~",
+                                              "[TRMV21 Sec. 5]"};
 inline constexpr LayerDecl kTrmvWeightA{"filter.trmv.visibility.w_a", LayerType::Scalar, LayerUse::Dump,
                                         "w_A = (alpha^V - alpha)^2", "[TRMV21 Eq. 7]"};
 inline constexpr LayerDecl kTrmvVisibilityWeightC{"filter.trmv.visibility.w_c", LayerType::Scalar, LayerUse::Dump,
                                                   "w_C = abs(cbar* - cbar) / (cbar + epsilon)", "[TRMV21 Eq. 8]"};
-inline constexpr LayerDecl kTrmvIndirectWeightC{"filter.trmv.indirect.w_c", LayerType::Scalar, LayerUse::Dump,
-                                                "w_C on luminance", "[TRMV21 Eq. 8]"};
+inline constexpr LayerDecl kTrmvDiffuseWeightC{"filter.trmv.diffuse.w_c", LayerType::Scalar, LayerUse::Dump,
+                                               "w_C on luminance", "[TRMV21 Eq. 8]"};
+inline constexpr LayerDecl kTrmvGlossyWeightC{"filter.trmv.glossy.w_c", LayerType::Scalar, LayerUse::Dump,
+                                              "w_C on luminance", "[TRMV21 Eq. 8]"};
 inline constexpr LayerDecl kTrmvVisibilityCleaned{"filter.trmv.visibility.cleaned", LayerType::Scalar, LayerUse::Dump,
                                                   "cbar_i after the clean-up: the filtered visibility",
                                                   "[TRMV21 Sec. 5]"};
-inline constexpr LayerDecl kTrmvIndirectCleaned{"filter.trmv.indirect.cleaned", LayerType::Rgb, LayerUse::Dump,
-                                                "cbar_i after the clean-up: the filtered indirect light",
-                                                "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvDiffuseCleaned{"filter.trmv.diffuse.cleaned", LayerType::Rgb, LayerUse::Dump,
+                                               "cbar_i after the clean-up: the filtered diffuse indirect light",
+                                               "[TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvGlossyCleaned{"filter.trmv.glossy.cleaned", LayerType::Rgb, LayerUse::Dump,
+                                              "cbar_i after the clean-up: the filtered glossy indirect light",
+                                              "[TRMV21 Sec. 5]"};
 }  // namespace layers
 
 // What a pass runs on: the whole frame once, each illumination stream, or each level of each stream.

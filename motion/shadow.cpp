@@ -95,27 +95,16 @@ ShadowRay ShadowRayLayers::at(size_t i) const {
 }
 
 std::vector<ShadowMotion> shadow_motion(const FrameGeometry& g, const Frame& frame) {
-  if (frame.width() != g.vis.width || frame.height() != g.vis.height)
-    throw Error("shadow_motion: a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
-                " frame for a " + std::to_string(g.vis.width) + "x" + std::to_string(g.vis.height) + " geometry");
   const ShadowRayLayers rays(frame);
   const std::vector<InstanceMotion> to_previous = instance_to_previous(g.pose, g.prev_pose);
-  std::vector<ShadowMotion> out(size_t(frame.width()) * size_t(frame.height()));
-  parallel_rows(g.vis.height, [&](int y) {
-    for (int x = 0; x < g.vis.width; ++x) {
-      const size_t i = g.vis.index(x, y);
-      out[i] = shadow_motion_pixel(rays.at(i), to_previous, g.view, g.prev_view);
-    }
+  return motion_per_pixel<ShadowMotion>("shadow_motion", g, frame, [&](size_t i) {
+    return shadow_motion_pixel(rays.at(i), to_previous, g.view, g.prev_view);
   });
-  return out;
 }
 
 void write_shadow_motion_layers(const FrameGeometry& g, Frame& frame) {
   const std::vector<ShadowMotion> m = shadow_motion(g, frame);
-  std::vector<glm::vec2> motion(m.size());
-  UIntPlane& valid = frame.add_uint("motion.shadow.valid");
-  for (size_t i = 0; i < m.size(); ++i) motion[i] = m[i].motion, valid.data[i] = m[i].valid ? 1u : 0u;
-  frame.set_vec2("motion.shadow", motion);
+  write_motion_and_validity(frame, "motion.shadow", m);
   const std::vector<SplatMotion> splat =
       splat_shadow_motion(m, frame.get_vec2("motion"), g.vis.depth, g.vis.width, g.vis.height, kShadowSplatSize);
   std::vector<glm::vec2> splat_motion(splat.size());

@@ -37,7 +37,9 @@
 // a stated failure). Only pixels whose shadow ray was blocked have m^V; motion/shadow_splat.h spreads it.
 #pragma once
 
+#include "core/error.h"
 #include "core/frame.h"
+#include "core/parallel.h"
 #include "raster/gbuffer_frame.h"
 #include "raster/view.h"
 #include "scenes/scene.h"
@@ -45,6 +47,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace rtdr {
@@ -93,6 +96,33 @@ class ShadowRayLayers {
   const FloatPlane *light_[3], *blocker_[3], *position_[3], *normal_[3];
   const UIntPlane *light_id_, *blocker_id_, *receiver_id_;
 };
+
+// The loop of a per-pixel motion pass over a rendered frame (the shadow and the glossy vector): out[i] = pixel(i)
+// at every pixel, row-major, rows in parallel; each pixel writes only its own entry, so any thread count gives the
+// same bits. Throws rtdr::Error naming `pass` when the frame is not the geometry's size.
+template <class T, class PixelFn>
+std::vector<T> motion_per_pixel(const char* pass, const FrameGeometry& g, const Frame& frame, const PixelFn& pixel) {
+  if (frame.width() != g.vis.width || frame.height() != g.vis.height)
+    throw Error(std::string(pass) + ": a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
+                " frame for a " + std::to_string(g.vis.width) + "x" + std::to_string(g.vis.height) + " geometry");
+  std::vector<T> out(size_t(frame.width()) * size_t(frame.height()));
+  parallel_rows(g.vis.height, [&](int y) {
+    for (int x = 0; x < g.vis.width; ++x) {
+      const size_t i = g.vis.index(x, y);
+      out[i] = pixel(i);
+    }
+  });
+  return out;
+}
+
+// Adds `layer`.X, `layer`.Y (each result's .motion) and `layer`.valid (uint 0/1, its .valid) to `frame`.
+template <class T>
+void write_motion_and_validity(Frame& frame, const std::string& layer, const std::vector<T>& results) {
+  std::vector<glm::vec2> motion(results.size());
+  UIntPlane& valid = frame.add_uint(layer + ".valid");
+  for (size_t i = 0; i < results.size(); ++i) motion[i] = results[i].motion, valid.data[i] = results[i].valid ? 1u : 0u;
+  frame.set_vec2(layer, motion);
+}
 
 // Every pixel's shadow motion, row-major.
 std::vector<ShadowMotion> shadow_motion(const FrameGeometry& geometry, const Frame& frame);

@@ -93,7 +93,11 @@ TEST_CASE("method specs: parameters, back end and illumination records, each che
   CHECK(trmv.trmv.motion == 0);
   CHECK(rtdr::spec_params(trmv).trmv.alpha == 0.3f);
   CHECK(rtdr::parse_method_spec("trmv:motion=shadow").trmv.motion == 1);
-  CHECK_THROWS_WITH(rtdr::parse_method_spec("trmv:motion=glossy"), Catch::Contains("motion=traditional|shadow"));
+  CHECK(rtdr::parse_method_spec("trmv:motion=dual").trmv.motion == 2);
+  CHECK(rtdr::parse_method_spec("trmv:motion=glossy").trmv.motion == 3);
+  CHECK(rtdr::parse_method_spec("trmv").trmv.motion == 4);  // the paper: each component its own vector
+  CHECK_THROWS_WITH(rtdr::parse_method_spec("trmv:motion=mirror"),
+                    Catch::Contains("motion=traditional|shadow|dual|glossy|all"));
 
   for (const char* bad : {"svgf:backend=metal", "svgf:backend=", "svgf:backend", "svgf:illumination=fp16",
                           "svgf:backend=cpu:illumination=fp32", "svgf:backend=vulkan:illumination=fp8",

@@ -17,9 +17,14 @@ TEST_CASE("trmv parameters: the paper's defaults, checked ranges, whole numbers,
   CHECK(p.cleanup_size == 9);         // 9x9 [TRMV21 Sec. 5]
   CHECK(p.cleanup_sigma_max == 5.0f); // min(w_A + w_C, 5) [TRMV21 Sec. 5]
   CHECK(p.cleanup_eps == 0.001f);     // [TRMV21 Eq. 8]
-  CHECK(p.motion == 1);               // the shadow motion [TRMV21 Eq. 3]
+  CHECK(p.motion == 4);               // each component its own vector [TRMV21 Sec. 4]
+  CHECK(p.cones == 1);                // the disoccluded history re-shaded from cones [TRMV21 Sec. 4.3]
+  CHECK(p.cone_half_angle == 0.71f);  // covers the hemisphere (filters/trmv/cones.h)
   CHECK(p.history_after_cleanup == 0);
-  CHECK(rtdr::trmv_param_table().size() == 11);
+  CHECK(rtdr::trmv_param_table().size() == 13);
+  CHECK(rtdr::trmv_motion_from_name("traditional") == 0);
+  CHECK(rtdr::trmv_motion_from_name("all") == 4);
+  CHECK(rtdr::trmv_motion_from_name("shadows") == -1);
   CHECK(rtdr::param_values(p).size() == rtdr::trmv_param_table().size());
   CHECK_NOTHROW(rtdr::validate(p));
 
@@ -35,7 +40,7 @@ TEST_CASE("trmv parameters: the paper's defaults, checked ranges, whole numbers,
   even.cleanup_size = 8;
   CHECK_THROWS_WITH(rtdr::validate(even), Catch::Contains("cleanup_size"));
   rtdr::TrmvParams other_motion;
-  other_motion.motion = 2;  // 0 traditional, 1 shadow
+  other_motion.motion = 5;  // 0 traditional, 1 shadow, 2 dual, 3 glossy, 4 all
   CHECK_THROWS_WITH(rtdr::validate(other_motion), Catch::Contains("motion"));
   rtdr::TrmvParams out_of_range;
   out_of_range.spatial_radius = 65;

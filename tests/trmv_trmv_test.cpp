@@ -24,13 +24,21 @@ namespace {
 
 constexpr int kW = 48, kH = 27;
 
-std::vector<Frame> cornell_frames(int count) {
-  const Scene scene = load_scene("cornell");
+std::vector<Frame> scene_frames(const std::string& name, int first, int count, int width = kW, int height = kH) {
+  const Scene scene = load_scene(name);
   std::vector<Frame> frames;
   RenderSettings settings;  // trmv's input: with the shading term
   settings.trace.shading_samples = kTrmvShadingSamples;
-  for (int f = 0; f < count; ++f) frames.push_back(render_frame(scene, f, kW, kH, settings));
+  for (int f = first; f < first + count; ++f) frames.push_back(render_frame(scene, f, width, height, settings));
   return frames;
+}
+
+std::vector<Frame> cornell_frames(int count) { return scene_frames("cornell", 0, count); }
+
+RgbPlane sum(const RgbPlane& a, const RgbPlane& b) {
+  RgbPlane out = a;
+  for (size_t i = 0; i < out.data.size(); ++i) out.data[i] += b.data[i];
+  return out;
 }
 
 double max_difference(const RgbPlane& a, const RgbPlane& b) {
@@ -46,7 +54,7 @@ struct ThreadCountGuard {
 
 }  // namespace
 
-TEST_CASE("trmv's first frame is the spatial filter of visibility and indirect light, remodulated: no history yet") {
+TEST_CASE("trmv's first frame is the spatial filter of visibility, diffuse and glossy light, remodulated: no history yet") {
   const Frame in = cornell_frames(1)[0];
   const MethodParams params = method_defaults("trmv");
   const std::unique_ptr<Method> method = make_method("trmv");
@@ -57,7 +65,8 @@ TEST_CASE("trmv's first frame is the spatial filter of visibility and indirect l
   RgbPlane v_rgb(kW, kH);
   for (size_t i = 0; i < v.data.size(); ++i) v_rgb.data[i] = glm::vec3(v.data[i]);
   const RgbPlane v_filtered = trmv_spatial_pass(v_rgb, s, params.trmv, params.svgf);
-  const RgbPlane indirect = trmv_spatial_pass(rgb_plane(in, "indirect"), s, params.trmv, params.svgf);
+  const RgbPlane indirect = sum(trmv_spatial_pass(rgb_plane(in, "indirect.diffuse"), s, params.trmv, params.svgf),
+                                trmv_spatial_pass(rgb_plane(in, "indirect.glossy"), s, params.trmv, params.svgf));
   RgbPlane direct = rgb_plane(in, "direct.shading");
   for (size_t i = 0; i < direct.data.size(); ++i) direct.data[i] *= v_filtered.data[i].x;  // shading x Vbar
   const RgbPlane expected = remodulate(direct, indirect, rgb_plane(in, "albedo"), rgb_plane(in, "emission"));
@@ -68,6 +77,7 @@ TEST_CASE("trmv's first frame is the spatial filter of visibility and indirect l
 TEST_CASE("on a still scene trmv along the shadow motion and along the surface motion agree") {
   const std::vector<Frame> frames = cornell_frames(4);
   MethodParams shadow = method_defaults("trmv"), traditional = shadow;
+  shadow.trmv.motion = 1;  // the shadow vector alone
   traditional.trmv.motion = 0;
   const std::unique_ptr<Method> a = make_method("trmv", shadow), b = make_method("trmv", traditional);
   double worst = 0.0;
@@ -108,14 +118,17 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
   std::vector<std::string> declared = m->dump_channels();
   std::sort(declared.begin(), declared.end());
   CHECK(channels == declared);
-  CHECK(declared.size() == 24);  // 9 scalar layers, 4 RGB ones and filter.tonemapped
+  CHECK(declared.size() == 40);  // 10 scalar layers, 9 RGB ones and filter.tonemapped
 
-  // The colour is the filtered visibility times the shading term, plus the filtered indirect light, remodulated.
+  // The colour is the filtered visibility times the shading term, plus the filtered diffuse and glossy light,
+  // remodulated.
   const FloatPlane v = dump.float_channel("filter.trmv.visibility.cleaned");
   RgbPlane direct = rgb_plane(frames.back(), "direct.shading");
   for (size_t i = 0; i < direct.data.size(); ++i) direct.data[i] *= v.data[i];
-  const RgbPlane expected = remodulate(direct, rgb_plane(dump, "filter.trmv.indirect.cleaned"),
-                                       rgb_plane(frames.back(), "albedo"), rgb_plane(frames.back(), "emission"));
+  const RgbPlane indirect =
+      sum(rgb_plane(dump, "filter.trmv.diffuse.cleaned"), rgb_plane(dump, "filter.trmv.glossy.cleaned"));
+  const RgbPlane expected =
+      remodulate(direct, indirect, rgb_plane(frames.back(), "albedo"), rgb_plane(frames.back(), "emission"));
   CHECK(max_difference(rgb_plane(out, "color"), expected) == 0.0);
 
   // The probe re-runs a pass's per-pixel function on the inputs it saw: its terms are the dumped values.
@@ -126,7 +139,8 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
     FAIL("no term " << name);
     return std::vector<float>{};
   };
-  CHECK(m->probe_passes() == std::vector<std::string>{"trmv_spatial", "trmv_falloff", "trmv_temporal", "trmv_cleanup"});
+  CHECK(m->probe_passes() == std::vector<std::string>{"trmv_spatial", "trmv_falloff", "trmv_reshade", "trmv_temporal",
+                                                      "trmv_cleanup"});
   int covered = 0;
   for (int y = 2; y < kH; y += 6)
     for (int x = 3; x < kW; x += 7) {
@@ -137,12 +151,53 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
             dump.float_channel("filter.trmv.visibility.alpha").data[i]);
       CHECK(term(m->probe("trmv_temporal", x, y, "visibility", 0), "cbar_i")[0] ==
             dump.float_channel("filter.trmv.visibility.temporal").data[i]);
-      CHECK(term(m->probe("trmv_cleanup", x, y, "indirect", 0), "w_C")[0] ==
-            dump.float_channel("filter.trmv.indirect.w_c").data[i]);
+      CHECK(term(m->probe("trmv_cleanup", x, y, "diffuse", 0), "w_C")[0] ==
+            dump.float_channel("filter.trmv.diffuse.w_c").data[i]);
+      CHECK(term(m->probe("trmv_temporal", x, y, "glossy", 0), "cbar_i", "cbar_i = c~_i")[1] ==
+            dump.float_channel("filter.trmv.glossy.temporal.G").data[i]);
       CHECK_FALSE(m->probe("trmv_spatial", x, y, "direct", 0).terms().empty());
     }
   CHECK(covered > 10);
   CHECK_THROWS_AS(m->probe("atrous", 1, 1, "visibility", 0), Error);      // not one of trmv's passes
-  CHECK_THROWS_AS(m->probe("trmv_cleanup", 1, 1, "glossy", 0), Error);    // not one of its components
-  CHECK_THROWS_AS(m->probe("trmv_cleanup", kW, 1, "indirect", 0), Error);  // outside the frame
+  CHECK_THROWS_AS(m->probe("trmv_cleanup", 1, 1, "indirect", 0), Error);  // not one of its components
+  CHECK_THROWS_AS(m->probe("trmv_cleanup", kW, 1, "diffuse", 0), Error);  // outside the frame
+}
+
+TEST_CASE("occlusion: disoccluded pixels take their diffuse history re-shaded from the cones, as the probe recomputes") {
+  // Frames 40-41 at 128x72: the boxes uncover a band of the wall about a pixel wide (tests/motion_dual_test.cpp).
+  // Two frames: at the second, both methods read the same history, so only the disoccluded pixels may differ.
+  constexpr int w = 128, h = 72;
+  const std::vector<Frame> frames = scene_frames("occlusion", 40, 2, w, h);
+  const std::unique_ptr<Method> with_cones = make_method("trmv");
+  MethodParams colour = method_defaults("trmv");
+  colour.trmv.cones = 0;  // the colour at x^O instead
+  const std::unique_ptr<Method> without = make_method("trmv", colour);
+  Frame dump, dump_colour;
+  for (const Frame& f : frames) with_cones->filter(f, &dump), without->filter(f, &dump_colour);
+  const Frame& last = frames.back();
+  const UIntPlane& disoccluded = last.uint_channel("motion.dual.valid");
+  const RgbPlane reshaded = rgb_plane(dump, "filter.trmv.diffuse.reshaded");
+  const RgbPlane temporal = rgb_plane(dump, "filter.trmv.diffuse.temporal");
+  const RgbPlane temporal_colour = rgb_plane(dump_colour, "filter.trmv.diffuse.temporal");
+  int checked = 0, differ = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y * w + x);
+      if (!disoccluded.data[i]) {  // elsewhere the cones change nothing
+        CHECK(reshaded.data[i] == glm::vec3(0.0f));
+        CHECK(temporal.data[i] == temporal_colour.data[i]);
+        continue;
+      }
+      // The probe's L_o is the dumped re-shaded history.
+      const Probe p = with_cones->probe("trmv_reshade", x, y, "diffuse", 0);
+      for (const Probe::Term& t : p.terms())
+        if (t.name == "L_o") {
+          CHECK(glm::vec3(t.value[0], t.value[1], t.value[2]) == reshaded.data[i]);
+          ++checked;
+        }
+      differ += temporal.data[i] != temporal_colour.data[i];
+    }
+  INFO(checked << " disoccluded pixels re-shaded, " << differ << " of them blend a history other than the colour's");
+  CHECK(checked > 0);
+  CHECK(differ > 0);
 }

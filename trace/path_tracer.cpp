@@ -144,7 +144,7 @@ PathSample trace_path(const TraceContext& c, const SurfaceSample& primary, const
     const Hit hit = c.embree.intersect(ray);
     ++out.rays;
     if (c.ray_log) c.ray_log->push_back({ray, kRayInfinity, false});
-    if (k == 0) out.record.secondary_direction = bs.wi;
+    if (k == 0) out.record.secondary_direction = bs.wi, out.record.secondary_pdf = bs.pdf;
     if (hit.instance == kInvalidId) break;  // escaped: there is no environment light
     const SurfacePoint y = c.surfaces.at({hit.instance, hit.triangle, hit.bary}, x.position);
     const glm::vec3 emitted = emission_hit(c, x, y, hit, bs.pdf);
@@ -160,6 +160,7 @@ PathSample trace_path(const TraceContext& c, const SurfaceSample& primary, const
     x = y;
     wo = -bs.wi;
   }
+  out.record.secondary_incoming = incoming;
   out.indirect_diffuse = weight0.diffuse * incoming;
   out.indirect_glossy = weight0.specular * incoming;
   out.indirect = out.indirect_diffuse + out.indirect_glossy;

@@ -58,6 +58,11 @@ struct PathRecord {
   glm::vec3 secondary_position{0.0f};  // the surface the primary BSDF ray hit
   uint32_t secondary_instance = kInvalidId;
   glm::vec3 secondary_direction{0.0f};  // the primary BSDF ray's direction (unit)
+  // The indirect radiance arriving at x_0 along that ray (what x_1 on sends back, x_1's own emission excluded:
+  // that is direct light) and the ray's sampling pdf (solid angle), for TRMV's cones [TRMV21 Sec. 4.3]
+  // (filters/trmv/cones.h). 0 and 0 when no ray was traced.
+  glm::vec3 secondary_incoming{0.0f};
+  float secondary_pdf = 0.0f;
 };
 
 // Radiance leaving the primary surface towards the eye, emission excluded (the emission layer holds it).

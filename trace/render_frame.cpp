@@ -6,6 +6,7 @@
 #include "core/parallel.h"
 #include "motion/backproject.h"
 #include "motion/dual.h"
+#include "motion/glossy.h"
 #include "motion/shadow.h"
 #include "trace/sampler.h"
 #include "trace/shading.h"
@@ -39,7 +40,8 @@ struct RadianceLayers {
   uint32_t shading_samples = 0;      // its light samples per pixel at this frame's spp (shading_sample_count)
   FloatPlane& visibility;
   UIntPlane& seed;
-  Channels3 light, blocker, secondary, direction;
+  Channels3 light, blocker, secondary, direction, incoming;
+  FloatPlane& pdf;
   UIntPlane &light_id, &blocker_id, &secondary_id;
 
   RadianceLayers(Frame& f, const RenderSettings& settings)
@@ -47,6 +49,7 @@ struct RadianceLayers {
         indirect_diffuse(f, "indirect.diffuse", kRGB), indirect_glossy(f, "indirect.glossy", kRGB),
         visibility(f.add_float("direct.visibility")), seed(f.add_uint("rng.seed")), light(f, "path.light", kXYZ),
         blocker(f, "path.blocker", kXYZ), secondary(f, "path.secondary", kXYZ), direction(f, "path.direction", kXYZ),
+        incoming(f, "path.incoming", kRGB), pdf(f.add_float("path.pdf")),
         light_id(f.add_uint("path.light.instance", kInvalidId)), blocker_id(f.add_uint("path.blocker.instance", kInvalidId)),
         secondary_id(f.add_uint("path.secondary.instance", kInvalidId)) {
     if (settings.trace.shading_samples <= 0) return;
@@ -59,6 +62,8 @@ struct RadianceLayers {
     blocker.set(i, r.blocker_position);
     secondary.set(i, r.secondary_position);
     direction.set(i, r.secondary_direction);
+    incoming.set(i, r.secondary_incoming);
+    pdf.data[i] = r.secondary_pdf;
     light_id.data[i] = r.light_instance;
     blocker_id.data[i] = r.blocker_instance;
     secondary_id.data[i] = r.secondary_instance;
@@ -144,6 +149,7 @@ TraceStats trace_layers(const Scene& scene, const FrameGeometry& g, const Render
 void write_path_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame) {
   write_shadow_motion_layers(geometry, frame);      // from the path record just traced [TRMV21 Eq. 3]
   write_dual_motion_layers(scene, geometry, frame);  // from the previous visibility buffer [TRMV21 Eq. 6]
+  write_glossy_motion_layers(geometry, frame);       // from the path record's secondary hit [TRMV21 Eq. 5]
 }
 
 Frame render_frame(const Scene& scene, int frame_index, int width, int height, const RenderSettings& settings,

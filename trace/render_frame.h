@@ -51,7 +51,8 @@ TraceStats trace_layers(const Scene& scene, const FrameGeometry& geometry, const
                         Frame& frame, const RowsDone& rows_done = {}, const PixelSeeds* seeds = nullptr);
 
 // TRMV's motion vectors, after trace_layers has recorded each pixel's path: the shadow vector and its splat
-// [TRMV21 Eq. 3] and the dual vector [TRMV21 Eq. 6] (motion/shadow.h, motion/dual.h). `frame` holds the
+// [TRMV21 Eq. 3], the dual vector [TRMV21 Eq. 6] and the glossy vector [TRMV21 Eq. 5] (motion/shadow.h,
+// motion/dual.h, motion/glossy.h). `frame` holds the
 // G-buffer, `motion` and the path.* layers of `geometry`'s frame.
 void write_path_motion_layers(const Scene& scene, const FrameGeometry& geometry, Frame& frame);
 

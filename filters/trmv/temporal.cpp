@@ -16,8 +16,9 @@ void check_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMoti
                  const FloatPlane& alpha) {
   const int w = filtered.width, h = filtered.height;
   if (!has_size(mesh, w, h) || !has_size(motion.motion, w, h) || !empty_or_size(motion.valid, w, h) ||
-      !empty_or_size(alpha, w, h))
-    throw Error("trmv temporal pass: the mesh, motion, validity and alpha planes are not all " + std::to_string(w) +
+      !empty_or_size(alpha, w, h) || !empty_or_size(motion.reshaded, w, h) ||
+      motion.reshaded_valid.width != motion.reshaded.width || motion.reshaded_valid.height != motion.reshaded.height)
+    throw Error("trmv temporal pass: the mesh, motion, validity, alpha and re-shaded planes are not all " + std::to_string(w) +
                 "x" + std::to_string(h) + " like c~");
   if (prev.color.width != 0 && !has_size(prev.mesh, prev.color.width, prev.color.height))
     throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
@@ -110,10 +111,17 @@ TrmvTemporalPixel trmv_temporal_pixel(const RgbPlane& filtered, const UIntPlane&
   note(probe, "first frame", float(first_frame));
   note(probe, "vector valid", float(valid));
   if (!covered || first_frame || !valid) return without_history(c, probe);
-  // x_{i-1} = x_i + m(x_i): where this pixel's content was in the previous frame [TRMV21 Eq. 1].
-  const glm::vec2 p_prev = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + motion.motion.at(x, y);
   TrmvTemporalPixel out;
-  if (!trmv_fetch_history(prev, p_prev, out.fetched, probe)) return without_history(c, probe);
+  if (motion.reshaded_valid.width != 0 && motion.reshaded_valid.at(x, y) != 0) {
+    // A disoccluded pixel's history, re-shaded from the cones at x^O [TRMV21 Sec. 4.3, Eq. 11] (reshade.h).
+    out.fetched = motion.reshaded.at(x, y);
+    note_group(probe, "fetch");
+    note(probe, "cbar_{i-1}, re-shaded", out.fetched, "[TRMV21 Eq. 11] from the cones at x^O");
+  } else {
+    // x_{i-1} = x_i + m(x_i): where this pixel's content was in the previous frame [TRMV21 Eq. 1].
+    const glm::vec2 p_prev = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + motion.motion.at(x, y);
+    if (!trmv_fetch_history(prev, p_prev, out.fetched, probe)) return without_history(c, probe);
+  }
   out.clamped = trmv_clamp_history(out.fetched, filtered, mesh, params.clamp_gamma, params.clamp_radius, x, y, probe);
   note_group(probe, "blend");
   out.alpha = alpha.width == 0 ? params.alpha : alpha.at(x, y);

@@ -6,7 +6,8 @@
 //        motion/backproject.h) with their validity; the previous history cbar_{i-1} and the previous `id.mesh`
 //        (empty history: the first frame); alpha per pixel (alpha^V of falloff.h for visibility, else the
 //        constant alpha of trmv_params.h, which an empty alpha plane stands for)
-//   out: cbar_{i-1}(x_{i-1}), the history fetched bilinearly at x_{i-1} = pixel centre + m;
+//   out: cbar_{i-1}(x_{i-1}), the history fetched bilinearly at x_{i-1} = pixel centre + m (or given re-shaded,
+//        TrmvMotion);
 //        cbar*_{i-1}, that history clamped per channel to [mu - gamma sigma, mu + gamma sigma] of c~ over the
 //        (2r+1)^2 window around the pixel [TRMV21 Sec. 5], gamma = clamp_gamma, r = clamp_radius;
 //        cbar_i = alpha c~_i + (1 - alpha) cbar*_{i-1}   [TRMV21 Eq. 2]
@@ -39,9 +40,14 @@ namespace rtdr {
 
 // One component's motion vectors: m = x_{i-1} - x_i in pixels, and 1 where the vector is valid. An empty
 // validity plane (width 0) means every vector is valid (the back-projected `motion` has none of its own).
+// At a pixel where `reshaded_valid` is 1 the history is `reshaded` instead of a fetch along m: the diffuse light
+// re-shaded from the cones at the dual vector's target [TRMV21 Sec. 4.3, Eq. 11] (filters/trmv/reshade.h). Both
+// empty: every history is fetched.
 struct TrmvMotion {
   Vec2Plane motion;
   UIntPlane valid;
+  RgbPlane reshaded;
+  UIntPlane reshaded_valid;
 };
 
 // The previous frame's history of one component. An empty colour (width 0) means "first frame".

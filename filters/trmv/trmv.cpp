@@ -28,19 +28,37 @@ RgbPlane shade(const RgbPlane& shading, const RgbPlane& visibility) {
   return out;
 }
 
+// The glossy motion where Eq. 5 gave one [TRMV21 Eq. 5], the surface motion elsewhere (motion/glossy.h).
+Vec2Plane glossy_or_surface_motion(const Frame& in, const Vec2Plane& surface) {
+  Vec2Plane m = xy_plane(in, "motion.glossy");
+  const UIntPlane& valid = in.uint_channel("motion.glossy.valid");
+  for (size_t i = 0; i < m.data.size(); ++i)
+    if (valid.data[i] == 0) m.data[i] = surface.data[i];
+  return m;
+}
+
 }  // namespace
 
 InputChannels trmv_input_channels() {
-  // Not `direct`: its direct light is the shading term times the filtered visibility.
+  // Not `direct`: its direct light is the shading term times the filtered visibility. Not `indirect`: its two
+  // parts follow vectors of their own.
   InputChannels c = common_input_channels(
-      {"indirect.R", "indirect.G", "indirect.B", "position.X", "position.Y", "position.Z", "geonormal.X",
-       "geonormal.Y", "geonormal.Z", "direct.shading.R", "direct.shading.G", "direct.shading.B", "direct.visibility",
-       "motion.shadow_splat.X", "motion.shadow_splat.Y"});
-  c.uints.push_back("motion.shadow_splat.valid");
+      {"indirect.diffuse.R", "indirect.diffuse.G", "indirect.diffuse.B", "indirect.glossy.R", "indirect.glossy.G",
+       "indirect.glossy.B", "position.X", "position.Y", "position.Z", "geonormal.X", "geonormal.Y", "geonormal.Z",
+       "direct.shading.R", "direct.shading.G", "direct.shading.B", "direct.visibility", "motion.shadow_splat.X",
+       "motion.shadow_splat.Y", "motion.dual.X", "motion.dual.Y", "motion.glossy.X", "motion.glossy.Y",
+       "path.direction.X", "path.direction.Y", "path.direction.Z", "path.incoming.R", "path.incoming.G",
+       "path.incoming.B", "path.pdf"});
+  c.uints.insert(c.uints.end(), {"motion.shadow_splat.valid", "motion.dual.valid", "motion.glossy.valid"});
+  // An engine that does not split its indirect light puts it all in indirect.diffuse.
+  for (const char* channel : {"indirect.diffuse.R", "indirect.diffuse.G", "indirect.diffuse.B", "indirect.glossy.R",
+                              "indirect.glossy.G", "indirect.glossy.B"})
+    c.defaults[channel] = 0.0f;
   return c;
 }
 
-TrmvFilter::TrmvFilter(const MethodParams& params) : params_(params) {
+TrmvFilter::TrmvFilter(const MethodParams& params)
+    : params_(params), cone_layout_(make_cone_layout(params.trmv.cone_half_angle)) {
   validate(params_.trmv);
   validate(params_.svgf);
   validate(params_.tonemap);
@@ -48,8 +66,10 @@ TrmvFilter::TrmvFilter(const MethodParams& params) : params_(params) {
 
 void TrmvFilter::reset() {
   visibility_ = {};
-  indirect_ = {};
+  diffuse_ = {};
+  glossy_ = {};
   prev_positions_ = {};
+  cones_ = {};
 }
 
 const RgbPlane& TrmvFilter::filter_component(Component& c) {
@@ -69,9 +89,50 @@ const RgbPlane& TrmvFilter::filter_component(Component& c) {
   return c.cleaned.color;
 }
 
+void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
+  const TrmvParams& p = params_.trmv;
+  // Along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the constant
+  // alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
+  shadow_motion_ = {xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid"), {}, {}};
+  receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
+  seen_prev_positions_ = std::move(prev_positions_);  // replaced after the frame by this frame's
+  visibility_.alpha = {};
+  if (trmv_uses_shadow(p.motion))
+    time_pass("trmv_falloff", [&] {
+      TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
+      visibility_.alpha = std::move(falloff.alpha_v);
+      theta = std::move(falloff.theta);
+    });
+  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
+  visibility_.motion = {trmv_uses_shadow(p.motion) ? shadow_motion_.motion : surface_.motion, {}, {}, {}};
+}
+
+void TrmvFilter::prepare_diffuse(const Frame& in) {
+  const TrmvParams& p = params_.trmv;
+  diffuse_.noisy = rgb_plane(in, "indirect.diffuse");
+  seen_cones_ = std::move(cones_);  // replaced below by this frame's
+  if (!trmv_uses_dual(p.motion)) {
+    diffuse_.motion = {surface_.motion, {}, {}, {}};
+    return;
+  }
+  // Along the dual motion [TRMV21 Eq. 6]: x^O at disoccluded pixels, the surface motion elsewhere (motion/dual.h).
+  dual_motion_ = {xy_plane(in, "motion.dual"), in.uint_channel("motion.dual.valid"), {}, {}};
+  diffuse_.motion = {dual_motion_.motion, {}, {}, {}};
+  if (p.cones == 0) return;  // the colour at x^O (Fig. 6's repetition)
+  // The cones: a disoccluded pixel's history re-shaded from the cones at x^O [TRMV21 Sec. 4.3, Eq. 11].
+  cone_inputs_ = TrmvConeInputs::from_frame(in);
+  time_pass("trmv_reshade", [&] {
+    TrmvReshadeOutput r =
+        trmv_reshade_pass(cone_inputs_, surface_, dual_motion_, seen_cones_, cone_layout_, p, params_.svgf);
+    cones_ = std::move(r.history);
+    diffuse_.motion.reshaded = std::move(r.reshaded);
+    diffuse_.motion.reshaded_valid = std::move(r.reshaded_valid);
+  });
+}
+
 Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
   times_.clear();
-  const RgbPlane& history = indirect_.history.color;
+  const RgbPlane& history = diffuse_.history.color;
   if (history.width != 0 && (history.width != in.width() || history.height != in.height()))
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
@@ -80,30 +141,21 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
   surface_ = SurfacePlanes::from_frame(in);
   const TrmvParams& p = params_.trmv;
 
-  // Visibility: along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the
-  // constant alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
-  shadow_motion_ = {xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid")};
-  receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
-  seen_prev_positions_ = std::move(prev_positions_);  // replaced below by this frame's
   FloatPlane theta;
-  visibility_.alpha = {};
-  if (p.motion == 1)
-    time_pass("trmv_falloff", [&] {
-      TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
-      visibility_.alpha = std::move(falloff.alpha_v);
-      theta = std::move(falloff.theta);
-    });
-  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
-  visibility_.motion = {p.motion == 1 ? shadow_motion_.motion : surface_.motion, {}};
+  prepare_visibility(in, theta);
   const RgbPlane& v = filter_component(visibility_);
-  // Indirect light: along the surface motion (the dual and glossy vectors of TRMV21 Sec. 4.2-4.3 do not exist yet).
-  indirect_.noisy = rgb_plane(in, "indirect");
-  indirect_.motion = {surface_.motion, {}};
-  const RgbPlane& indirect = filter_component(indirect_);
+  prepare_diffuse(in);
+  const RgbPlane& diffuse = filter_component(diffuse_);
+  glossy_.noisy = rgb_plane(in, "indirect.glossy");
+  glossy_.motion = {trmv_uses_glossy(p.motion) ? glossy_or_surface_motion(in, surface_.motion) : surface_.motion,
+                    {}, {}, {}};
+  const RgbPlane& glossy = filter_component(glossy_);
   prev_positions_ = {receiver_.position, surface_.mesh};
 
   RgbPlane color, display;
   time_pass("modulate", [&] {
+    RgbPlane indirect = diffuse;
+    for (size_t i = 0; i < indirect.data.size(); ++i) indirect.data[i] += glossy.data[i];
     color = remodulate(shade(rgb_plane(in, "direct.shading"), v), indirect, rgb_plane(in, "albedo"),
                        rgb_plane(in, "emission"));
   });
@@ -127,26 +179,35 @@ void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tone
     return out;
   };
   dump_layer(dump, kTrmvVisibilitySpatial, {}, -1, first(visibility_.filtered));
-  dump_layer(dump, kTrmvIndirectSpatial, {}, -1, indirect_.filtered);
-  if (p.motion == 1) {
+  dump_layer(dump, kTrmvDiffuseSpatial, {}, -1, diffuse_.filtered);
+  dump_layer(dump, kTrmvGlossySpatial, {}, -1, glossy_.filtered);
+  if (trmv_uses_shadow(p.motion)) {
     dump_layer(dump, kTrmvTheta, {}, -1, theta);
     dump_layer(dump, kTrmvAlphaV, {}, -1, visibility_.alpha);
   }
+  if (trmv_uses_dual(p.motion) && p.cones != 0) dump_layer(dump, kTrmvDiffuseReshaded, {}, -1, diffuse_.motion.reshaded);
   dump_layer(dump, kTrmvWeightA, {}, -1, visibility_.cleaned.w_a);
   dump_layer(dump, kTrmvVisibilityTemporal, {}, -1, first(visibility_.temporal.color));
   dump_layer(dump, kTrmvVisibilityClamped, {}, -1, first(visibility_.temporal.clamped));
-  dump_layer(dump, kTrmvIndirectTemporal, {}, -1, indirect_.temporal.color);
-  dump_layer(dump, kTrmvIndirectClamped, {}, -1, indirect_.temporal.clamped);
+  dump_layer(dump, kTrmvDiffuseTemporal, {}, -1, diffuse_.temporal.color);
+  dump_layer(dump, kTrmvDiffuseClamped, {}, -1, diffuse_.temporal.clamped);
+  dump_layer(dump, kTrmvGlossyTemporal, {}, -1, glossy_.temporal.color);
+  dump_layer(dump, kTrmvGlossyClamped, {}, -1, glossy_.temporal.clamped);
   dump_layer(dump, kTrmvVisibilityWeightC, {}, -1, visibility_.cleaned.w_c);
-  dump_layer(dump, kTrmvIndirectWeightC, {}, -1, indirect_.cleaned.w_c);
+  dump_layer(dump, kTrmvDiffuseWeightC, {}, -1, diffuse_.cleaned.w_c);
+  dump_layer(dump, kTrmvGlossyWeightC, {}, -1, glossy_.cleaned.w_c);
   dump_layer(dump, kTrmvVisibilityCleaned, {}, -1, first(visibility_.cleaned.color));
-  dump_layer(dump, kTrmvIndirectCleaned, {}, -1, indirect_.cleaned.color);
+  dump_layer(dump, kTrmvDiffuseCleaned, {}, -1, diffuse_.cleaned.color);
+  dump_layer(dump, kTrmvGlossyCleaned, {}, -1, glossy_.cleaned.color);
   dump_layer(dump, kTonemapped, {}, -1, tonemapped);
 }
 
 std::vector<std::string> TrmvFilter::probe_passes() const {
-  std::vector<std::string> passes = {"trmv_spatial", "trmv_temporal", "trmv_cleanup"};
-  if (params_.trmv.motion == 1) passes.insert(passes.begin() + 1, "trmv_falloff");
+  const TrmvParams& p = params_.trmv;
+  std::vector<std::string> passes = {"trmv_spatial"};
+  if (trmv_uses_shadow(p.motion)) passes.push_back("trmv_falloff");
+  if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back("trmv_reshade");
+  passes.insert(passes.end(), {"trmv_temporal", "trmv_cleanup"});
   return passes;
 }
 
@@ -161,8 +222,9 @@ std::vector<std::string> TrmvFilter::dump_channels() const {
 
 const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) const {
   if (stream == "visibility" || stream == "direct") return visibility_;  // direct's noisy part is its visibility
-  if (stream == "indirect") return indirect_;
-  throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), indirect");
+  if (stream == "diffuse") return diffuse_;
+  if (stream == "glossy") return glossy_;
+  throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), diffuse, glossy");
 }
 
 Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int) const {
@@ -185,6 +247,10 @@ Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string
     trmv_spatial_pixel(rows, surface_, kTrmvVertical, p.spatial_radius, p.spatial_sigma, params_.svgf, x, y, &probe);
   }
   if (pass == "trmv_falloff") trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, p, x, y, &probe);
+  if (pass == "trmv_reshade") {  // the diffuse light's: the re-shaded history at a disoccluded pixel
+    glm::vec3 reshaded;
+    trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, x, y, reshaded, &probe);
+  }
   if (pass == "trmv_temporal")
     trmv_temporal_pixel(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p, x, y, &probe);
   if (pass == "trmv_cleanup") trmv_cleanup_weights_pixel(c.temporal, c.alpha, p, x, y, &probe);

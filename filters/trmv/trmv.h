@@ -2,16 +2,23 @@
 // component, each step a pass of its own (filters/trmv/README.md):
 //   visibility V (direct.visibility):  spatial.h -> falloff.h (alpha^V, with the shadow motion) -> temporal.h
 //                                      along the shadow motion (or the surface motion) -> cleanup.h
-//   indirect (indirect):               spatial.h -> temporal.h along the surface motion -> cleanup.h
-//   then direct = direct.shading x Vbar (the noise-free shading term, trace/README.md), remodulation with the
-//   albedo, emission added [SVGF17 Sec. 3], and tone mapping (svgf/tonemap.h). TRMV has no TAA.
+//   diffuse (indirect.diffuse):        spatial.h -> temporal.h along the dual motion, whose disoccluded pixels
+//                                      take their history re-shaded from the cones at x^O (reshade.h), or along
+//                                      the surface motion -> cleanup.h
+//   glossy (indirect.glossy):          spatial.h -> temporal.h along the glossy motion (or the surface motion)
+//                                      -> cleanup.h
+//   then direct = direct.shading x Vbar (the noise-free shading term, trace/README.md), indirect = diffuse +
+//   glossy, remodulation with the albedo, emission added [SVGF17 Sec. 3], and tone mapping (svgf/tonemap.h).
+//   TRMV has no TAA.
 // This is the reverse of SVGF's order (accumulate, then filter) [TRMV21 Sec. 3].
 //
-// `trmv:motion=shadow` (TrmvParams::motion = 1, the default) drives the visibility's history with the splatted
-// shadow motion (motion/shadow_splat.h) [TRMV21 Eq. 3] and Eq. 4's alpha^V; `motion=traditional` (0) with the
-// back-projected surface motion [TRMV21 Eq. 1] and the constant alpha: the paper's "Trad." rows of Fig. 8, with
-// (clamp_gamma = 3) and without (clamp_gamma = 0) the clamp. The indirect light follows the surface motion in
-// both (the dual and glossy vectors of TRMV21 Sec. 4.2-4.3 are not implemented yet).
+// Which vector each history follows is TrmvParams::motion (`trmv:motion=NAME`): `all` (4, the default, the
+// paper's) gives each component its own: the splatted shadow motion (motion/shadow_splat.h) [TRMV21 Eq. 3] with
+// Eq. 4's alpha^V for the visibility, the dual motion (motion/dual.h) [TRMV21 Eq. 6] for the diffuse light, the
+// glossy motion (motion/glossy.h) [TRMV21 Eq. 5] for the glossy light. `traditional` (0) drives every history with
+// the back-projected surface motion [TRMV21 Eq. 1] and the constant alpha: the paper's "Trad." rows (with
+// clamp_gamma = 3 and without, clamp_gamma = 0). `shadow` (1), `dual` (2) and `glossy` (3) each swap in one
+// vector alone, so that a comparison changes only that vector, as the paper's figures do.
 #pragma once
 
 #include "filters/method.h"
@@ -19,7 +26,9 @@
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/tonemap.h"
 #include "filters/trmv/cleanup.h"
+#include "filters/trmv/cones.h"
 #include "filters/trmv/falloff.h"
+#include "filters/trmv/reshade.h"
 #include "filters/trmv/temporal.h"
 #include "filters/trmv/trmv_params.h"
 
@@ -36,7 +45,8 @@ class TrmvFilter : public Method {
   std::string name() const override { return "trmv"; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
-  // `stream` is the component: "visibility" (or "direct", whose noisy part it is) or "indirect"; `level` is unused.
+  // `stream` is the component: "visibility" (or "direct", whose noisy part it is), "diffuse" or "glossy"; `level`
+  // is unused.
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return trmv_input_channels(); }
@@ -56,13 +66,22 @@ class TrmvFilter : public Method {
   };
   // Runs one component's passes on c.noisy, c.motion and c.alpha.
   const RgbPlane& filter_component(Component& c);
+  // The visibility's motion and alpha^V for this frame (the falloff pass when the shadow vector drives it).
+  void prepare_visibility(const Frame& in, FloatPlane& theta);
+  // The diffuse light's motion: the dual vector, with the cones' re-shaded history (the re-shade pass).
+  void prepare_diffuse(const Frame& in);
   void dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const;
   const Component& component(const std::string& stream) const;
 
   MethodParams params_;
   SurfacePlanes surface_;
-  Component visibility_, indirect_;
+  Component visibility_, diffuse_, glossy_;
   TrmvMotion shadow_motion_;              // motion.shadow_splat and where a vector landed (.valid)
+  TrmvMotion dual_motion_;                // motion.dual and where Eq. 6 applied (.valid)
+  ConeLayout cone_layout_;                // six cones of half-angle cone_half_angle (cones.h)
+  TrmvConeHistory cones_;                 // this frame's cones: next frame's history
+  TrmvConeHistory seen_cones_;            // those the re-shade pass read this frame
+  TrmvConeInputs cone_inputs_;            // this frame's path samples
   TrmvReceiver receiver_;                 // this frame's s_i, n(s_i), for Eq. 4
   TrmvPreviousPositions prev_positions_;  // the previous frame's `position` and id.mesh, for Eq. 4
   TrmvPreviousPositions seen_prev_positions_;  // those the falloff pass read this frame

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 
+#include <iterator>
 #include <string>
 
 namespace rtdr {
@@ -16,6 +17,12 @@ void validate(const TrmvParams& p) {
   // A K x K window centred on the pixel reaches (K - 1) / 2 pixels each way; an even K has no centre.
   if (p.cleanup_size % 2 == 0)
     throw Error("trmv parameter cleanup_size = " + std::to_string(p.cleanup_size) + " must be odd (TRMV21 Sec. 5: 9x9)");
+}
+
+int trmv_motion_from_name(const std::string& name) {
+  for (int m = 0; m < int(std::size(kTrmvMotionNames)); ++m)
+    if (name == kTrmvMotionNames[m]) return m;
+  return -1;
 }
 
 bool set_param(TrmvParams& params, const std::string& key, double value) {

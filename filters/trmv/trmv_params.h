@@ -18,13 +18,30 @@
   X(float, cleanup_eps, 0.001f, 1e-9f, 1.0f, "epsilon", "TRMV21 Eq. 8: 'epsilon is set to 0.001'")               \
   X(int, history_after_cleanup, 0, 0, 1, "",                                                                      \
     "TRMV21 Sec. 5 leaves it open: 0 keeps cbar_i before the clean-up as next frame's history, 1 after it")        \
-  X(int, motion, 1, 0, 1, "",                                                                                     \
-    "TRMV21 Sec. 4.1: the visibility's history follows 0 the surface motion (Eq. 1, 'Trad.'), 1 the shadow's (Eq. 3)")
+  X(int, motion, 4, 0, 4, "",                                                                                     \
+    "TRMV21 Sec. 4: whose vectors the histories follow: 0 all the surface motion (Eq. 1, 'Trad.'); 1 visibility the " \
+    "shadow's (Eq. 3); 2 diffuse the dual (Eq. 6); 3 glossy the glossy (Eq. 5); 4 each its own, the paper's")          \
+  X(int, cones, 1, 0, 1, "",                                                                                      \
+    "TRMV21 Sec. 4.3: a disoccluded pixel's diffuse history is 1 re-shaded from the six cones at x^O (Eq. 11), "      \
+    "0 the colour at x^O (Fig. 6's repetition)")                                                                    \
+  X(float, cone_half_angle, 0.71f, 0.1f, 1.5f, "theta_c",                                                         \
+    "TRMV21 Eq. 9-10, radians: 0.71 covers the hemisphere with six cones (cones.h); the paper's pi/6 = 0.5236 does not")
 
 #pragma once
 #include "filters/params.h"
 
+#include <string>
+
 namespace rtdr {
+
+// The motion row's values by name, as `trmv:motion=NAME` spells them (index = value).
+inline constexpr const char* kTrmvMotionNames[] = {"traditional", "shadow", "dual", "glossy", "all"};
+// The value of a motion name, or -1.
+int trmv_motion_from_name(const std::string& name);
+// Which vector each component's history follows under `motion` (the motion row).
+inline bool trmv_uses_shadow(int motion) { return motion == 1 || motion == 4; }
+inline bool trmv_uses_dual(int motion) { return motion == 2 || motion == 4; }
+inline bool trmv_uses_glossy(int motion) { return motion == 3 || motion == 4; }
 
 struct TrmvParams {
   RTDR_TRMV_PARAMS(RTDR_PARAM_FIELD)

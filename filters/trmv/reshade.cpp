@@ -1,0 +1,133 @@
+// TRMV's cone history and the re-shading of disoccluded pixels [TRMV21 Sec. 4.3, Eq. 11]. What the pass
+// computes, its inputs, outputs and choices: filters/trmv/reshade.h.
+#include "filters/trmv/reshade.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "filters/trmv/spatial.h"
+
+#include <cmath>
+#include <string>
+
+namespace rtdr {
+
+TrmvConeInputs TrmvConeInputs::from_frame(const Frame& frame) {
+  return {xyz_plane(frame, "path.direction"), rgb_plane(frame, "path.incoming"), frame.float_channel("path.pdf")};
+}
+
+ConeValues trmv_cone_estimate(const ConeLayout& layout, glm::vec3 normal, glm::vec3 direction, glm::vec3 incoming,
+                              float pdf) {
+  ConeValues lhat{};
+  // One sample: Lhat_k = L_in(w) 1[w in cone k] / (p(w) Omega_k^+) [TRMV21 Sec. 4.3] (cones.h). No ray was
+  // traced where p = 0 (no surface, or the BSDF sample failed): every cone stays 0.
+  if (pdf > 0.0f) add_cone_sample(layout, normal, direction, incoming, pdf, lhat);
+  return lhat;
+}
+
+bool trmv_cones_at(const TrmvConeHistory& prev, const ConeLayout& layout, glm::vec2 x_o, glm::vec3 n, ConeValues& out,
+                   Probe* probe) {
+  note_group(probe, "cones at x^O");
+  note(probe, "x^O", x_o, "[TRMV21 Eq. 6] pixel centre + motion.dual");
+  if (prev.empty()) return false;
+  // The nearest pixel: the one whose square holds x^O (reshade.h).
+  const int qx = int(std::floor(x_o.x)), qy = int(std::floor(x_o.y));
+  if (!inside(prev.normal, qx, qy) || prev.cones[0].mesh.at(qx, qy) == kInvalidId) return false;
+  ConeValues source;
+  for (int k = 0; k < kConeCount; ++k) source[size_t(k)] = prev.cones[size_t(k)].color.at(qx, qy);
+  // Re-oriented from the normal there to this pixel's, by the overlap of each pair of cones [TRMV21 Eq. 9-10].
+  const glm::vec3 n_source = prev.normal.at(qx, qy);
+  out = transfer_cones(layout, n, n_source, source);
+  note(probe, "n at x^O", n_source);
+  note(probe, "n", n);
+  for (int k = 0; k < kConeCount; ++k) note(probe, "L'_k", out[size_t(k)], "[TRMV21 Sec. 4.3] transferred cone k");
+  return true;
+}
+
+bool trmv_reshade_pixel(const TrmvConeHistory& prev, const ConeLayout& layout, const SurfacePlanes& surface,
+                        const TrmvMotion& dual, int x, int y, glm::vec3& out, Probe* probe) {
+  const bool disoccluded = surface.covered(x, y) && dual.valid.at(x, y) != 0;
+  note_group(probe, "input");
+  note(probe, "disoccluded", float(disoccluded), "[TRMV21 Eq. 6] motion.dual.valid");
+  if (!disoccluded) return false;
+  const glm::vec2 x_o = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + dual.motion.at(x, y);
+  ConeValues cones;
+  if (!trmv_cones_at(prev, layout, x_o, surface.normal.at(x, y), cones, probe)) return false;
+  // L_o = (1/pi) sum_k c_k L'_k, demodulated: the history this pixel's own normal makes of them [TRMV21 Eq. 11].
+  out = reshade_cones(layout, cones);
+  note_group(probe, "re-shade");
+  note(probe, "L_o", out, "[TRMV21 Eq. 11] with the cosine (cones.h)");
+  return true;
+}
+
+namespace {
+
+void check_sizes(const TrmvConeInputs& in, const SurfacePlanes& s, const TrmvMotion& dual) {
+  const int w = s.width(), h = s.height();
+  if (!has_size(in.direction, w, h) || !has_size(in.incoming, w, h) || !has_size(in.pdf, w, h) ||
+      !has_size(dual.motion, w, h) || !has_size(dual.valid, w, h))
+    throw Error("trmv re-shade pass: path.direction, path.incoming, path.pdf and motion.dual are not all " +
+                std::to_string(w) + "x" + std::to_string(h) + " like the frame");
+}
+
+// Lbar_k = alpha L~_k + (1 - alpha) H_k at one pixel [TRMV21 Eq. 2, per cone]: H from x^O's cones where the
+// dual vector applies, else fetched along the surface motion; no history: Lbar = L~.
+void accumulate_cones_pixel(const std::array<RgbPlane, kConeCount>& filtered, const SurfacePlanes& s,
+                            const TrmvMotion& dual, const TrmvConeHistory& prev, const ConeLayout& layout,
+                            float alpha, int x, int y, TrmvConeHistory& out) {
+  ConeValues history;
+  bool has_history = false;
+  if (dual.valid.at(x, y) != 0) {
+    const glm::vec2 x_o = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + dual.motion.at(x, y);
+    has_history = trmv_cones_at(prev, layout, x_o, s.normal.at(x, y), history);
+  } else if (!prev.empty()) {
+    const glm::vec2 p_prev = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + s.motion.at(x, y);
+    has_history = true;
+    for (int k = 0; k < kConeCount && has_history; ++k)
+      has_history = trmv_fetch_history(prev.cones[size_t(k)], p_prev, history[size_t(k)]);
+  }
+  for (int k = 0; k < kConeCount; ++k) {
+    const glm::vec3 l = filtered[size_t(k)].at(x, y);
+    out.cones[size_t(k)].color.at(x, y) = has_history ? alpha * l + (1.0f - alpha) * history[size_t(k)] : l;
+  }
+}
+
+}  // namespace
+
+TrmvReshadeOutput trmv_reshade_pass(const TrmvConeInputs& in, const SurfacePlanes& s, const TrmvMotion& dual,
+                                    const TrmvConeHistory& prev, const ConeLayout& layout, const TrmvParams& params,
+                                    const SvgfParams& svgf) {
+  check_sizes(in, s, dual);
+  const int w = s.width(), h = s.height();
+  // Lhat_k: each pixel's one-sample estimate of its six cones.
+  std::array<RgbPlane, kConeCount> estimate;
+  for (RgbPlane& e : estimate) e = RgbPlane(w, h);
+  parallel_rows(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      if (!s.covered(x, y)) continue;
+      const ConeValues lhat =
+          trmv_cone_estimate(layout, s.normal.at(x, y), in.direction.at(x, y), in.incoming.at(x, y), in.pdf.at(x, y));
+      for (int k = 0; k < kConeCount; ++k) estimate[size_t(k)].at(x, y) = lhat[size_t(k)];
+    }
+  });
+  // L~_k: each cone filtered in space on its own, with the components' joint bilateral filter [TRMV21 Sec. 5].
+  std::array<RgbPlane, kConeCount> filtered;
+  for (int k = 0; k < kConeCount; ++k) filtered[size_t(k)] = trmv_spatial_pass(estimate[size_t(k)], s, params, svgf);
+
+  TrmvReshadeOutput out;
+  for (TrmvHistory& c : out.history.cones) c = {RgbPlane(w, h), s.mesh};
+  out.history.normal = s.normal;
+  out.reshaded = RgbPlane(w, h);
+  out.reshaded_valid = UIntPlane(w, h);
+  parallel_rows(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      if (!s.covered(x, y)) continue;
+      glm::vec3 reshaded;
+      if (trmv_reshade_pixel(prev, layout, s, dual, x, y, reshaded))
+        out.reshaded.at(x, y) = reshaded, out.reshaded_valid.at(x, y) = 1u;
+      accumulate_cones_pixel(filtered, s, dual, prev, layout, params.alpha, x, y, out.history);
+    }
+  });
+  return out;
+}
+
+}  // namespace rtdr

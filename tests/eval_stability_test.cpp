@@ -418,7 +418,7 @@ TEST_CASE("glossy: trmv along the glossy motion leaves less reflection ghosting 
        << ghost.at("trmv:motion=glossy:clamp_gamma=0") << ", traditional "
        << ghost.at("trmv:motion=traditional:clamp_gamma=0") << "; svgf " << ghost.at("svgf"));
   // Measured at 160x90, frames 4-15, 2026-11-26: glossy 0.5595 against traditional 0.5620 (-0.45 %); without the
-  // clamp 0.5651 against 0.5709 (-1.0 %); svgf 0.5269. The paper's order holds, by little: the floor's roughness
+  // clamp 0.5650 against 0.5709 (-1.0 %); svgf 0.5269. The paper's order holds, by little: the floor's roughness
   // 0.15 spreads each reflection over a footprint (sqrt(trace Sigma) about 13 px at this size,
   // tests/motion_glossy_test.cpp) wider than its lag, and most of the floor's error is the highlights' blur, which
   // no vector changes (filters/trmv/README.md).

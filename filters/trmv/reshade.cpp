@@ -29,6 +29,9 @@ bool trmv_cones_at(const TrmvConeHistory& prev, const ConeLayout& layout, glm::v
   note_group(probe, "cones at x^O");
   note(probe, "x^O", x_o, "[TRMV21 Eq. 6] pixel centre + motion.dual");
   if (prev.empty()) return false;
+  // Off the previous image (false for NaN too); this also keeps floor(x^O) within int range for far-off vectors.
+  const int w = prev.normal.width, h = prev.normal.height;
+  if (!(x_o.x >= 0.0f && x_o.y >= 0.0f && x_o.x < float(w) && x_o.y < float(h))) return false;
   // The nearest pixel: the one whose square holds x^O (reshade.h).
   const int qx = int(std::floor(x_o.x)), qy = int(std::floor(x_o.y));
   if (!inside(prev.normal, qx, qy) || prev.cones[0].mesh.at(qx, qy) == kInvalidId) return false;

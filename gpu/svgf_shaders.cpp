@@ -14,6 +14,9 @@ static_assert(kTemporalTexelBindings + kTemporalStorageBindings <= kStorageInput
               "VulkanContext picks storage inputs only where the device allows every port's bindings");
 static_assert(kTemporalTexelBindings <= kTexelInputBindings,
               "VulkanContext picks texel inputs only where the device allows every port's texel bindings");
+static_assert(kTrmvTemporalTexelBindings + kTrmvTemporalStorageBindings <= kStorageInputBindings &&
+                  kTrmvTemporalTexelBindings <= kTexelInputBindings,
+              "TRMV's temporal port fits the bindings VulkanContext chose its input kind for");
 
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
@@ -84,7 +87,10 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
                 specialization()),
       tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
                specialization()),
-      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization()) {}
+      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization()),
+      trmv_temporal_(context, load_port(context, "trmv_temporal"),
+                     bindings(context, kTrmvTemporalTexelBindings, kTrmvTemporalStorageBindings),
+                     sizeof(TrmvTemporalPush), specialization()) {}
 
 std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& more) const {
   static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
@@ -137,6 +143,15 @@ void SvgfShaders::taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBu
                       const GpuBuffer& out, const TaaPush& push) const {
   batch.dispatch(taa_, {&current, &history, &motion, &out}, &push, groups_x(push.width), groups_y(push.height),
                  "taa");
+}
+
+void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& in, const GpuBuffer& color_alpha_out,
+                                const GpuBuffer& fetched_out, const GpuBuffer& clamped_out,
+                                const TrmvTemporalPush& push) const {
+  batch.dispatch(trmv_temporal_,
+                 {in.filtered_alpha, in.mesh, in.motion, in.valid, in.reshaded, in.prev_color, in.prev_mesh,
+                  &color_alpha_out, &fetched_out, &clamped_out},
+                 &push, groups_x(push.width), groups_y(push.height), "trmv_temporal");
 }
 
 }  // namespace rtdr

@@ -1,7 +1,8 @@
 // The SVGF ports' compute pipelines, created once, and one function per pass that records its dispatch into a
 // ComputeBatch. Every buffer is a plane in the layout of filters/svgf/planes_shared.h; the per-stream passes take the
 // direct and the indirect stream together: in one illumination buffer, and as two moments planes (Streams). The shaders
-// are filters/svgf/*.comp and filters/taa/taa.comp; each pass's bindings are listed in its <stem>_shared.h.
+// are filters/svgf/*.comp, filters/taa/taa.comp and filters/trmv/temporal.comp; each pass's bindings are listed in
+// its <stem>_shared.h.
 #pragma once
 
 #include "filters/svgf/atrous_shared.h"
@@ -11,6 +12,7 @@
 #include "filters/svgf/tonemap_shared.h"
 #include "filters/svgf/variance_shared.h"
 #include "filters/taa/taa_shared.h"
+#include "filters/trmv/temporal_shared.h"
 #include "gpu/compute.h"
 
 #include <cstdint>
@@ -38,6 +40,18 @@ struct HistoryPlanes {
   Streams moments;                // mu1', mu2', n
   const GpuBuffer* surface;
   const GpuBuffer* mesh;
+};
+
+// What TRMV's temporal pass reads (filters/trmv/temporal_shared.h's bindings 0-6); an optional plane that is empty
+// is one unread texel, and the push constants say so.
+struct TrmvTemporalPlanes {
+  const GpuBuffer* filtered_alpha;  // (c~_i, alpha)
+  const GpuBuffer* mesh;            // id.mesh
+  const GpuBuffer* motion;          // m
+  const GpuBuffer* valid;           // the motion's validity
+  const GpuBuffer* reshaded;        // (re-shaded history, its validity)
+  const GpuBuffer* prev_color;      // cbar_{i-1}
+  const GpuBuffer* prev_mesh;       // the previous id.mesh
 };
 
 class SvgfShaders;
@@ -77,6 +91,9 @@ class SvgfShaders {
   void tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display, const TonemapPush& push) const;
   void taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,
            const GpuBuffer& out, const TaaPush& push) const;
+  // [TRMV21 Eq. 2, Sec. 5]: c~, motion and history -> (cbar_i, alpha), the fetched and the clamped history.
+  void trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& in, const GpuBuffer& color_alpha_out,
+                     const GpuBuffer& fetched_out, const GpuBuffer& clamped_out, const TrmvTemporalPush& push) const;
 
  private:
   // The specialization constants every SVGF port takes (the workgroup shape), then `more` (the a-trous kernel
@@ -88,7 +105,7 @@ class SvgfShaders {
 
   // The SVGF ports' workgroup shape on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
   uint32_t group_width_, group_height_;
-  ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_;
+  ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_, trmv_temporal_;
 };
 
 template <class Record>

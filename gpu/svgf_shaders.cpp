@@ -3,6 +3,7 @@
 
 #include "filters/svgf/atrous.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ static_assert(kTemporalTexelBindings <= kTexelInputBindings,
 static_assert(kTrmvTemporalTexelBindings + kTrmvTemporalStorageBindings <= kStorageInputBindings &&
                   kTrmvTemporalTexelBindings <= kTexelInputBindings,
               "TRMV's temporal port fits the bindings VulkanContext chose its input kind for");
+static_assert(kTrmvSpatialTexelBindings + kTrmvSpatialStorageBindings <= kStorageInputBindings &&
+                  kTrmvSpatialTexelBindings <= kTexelInputBindings &&
+                  kTrmvCleanupTexelBindings + kTrmvCleanupStorageBindings <= kStorageInputBindings &&
+                  kTrmvCleanupTexelBindings <= kTexelInputBindings,
+              "TRMV's spatial and clean-up ports fit the bindings VulkanContext chose its input kind for");
+static_assert(kAdaptiveAlphaTexelBindings + kAdaptiveAlphaStorageBindings <= kStorageInputBindings &&
+                  kAdaptiveAlphaTexelBindings <= kTexelInputBindings,
+              "A-SVGF's adaptive alpha port fits the bindings VulkanContext chose its input kind for");
+static_assert(kGradientImageTexelBindings + kGradientImageStorageBindings <= kStorageInputBindings &&
+                  kGradientImageTexelBindings <= kTexelInputBindings,
+              "A-SVGF's gradient image port fits the bindings VulkanContext chose its input kind for");
 
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
@@ -90,7 +102,19 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
       taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization()),
       trmv_temporal_(context, load_port(context, "trmv_temporal"),
                      bindings(context, kTrmvTemporalTexelBindings, kTrmvTemporalStorageBindings),
-                     sizeof(TrmvTemporalPush), specialization()) {}
+                     sizeof(TrmvTemporalPush), specialization()),
+      trmv_spatial_(context, load_port(context, "trmv_spatial"),
+                    bindings(context, kTrmvSpatialTexelBindings, kTrmvSpatialStorageBindings),
+                    sizeof(TrmvSpatialPush), specialization()),
+      trmv_cleanup_(context, load_port(context, "trmv_cleanup"),
+                    bindings(context, kTrmvCleanupTexelBindings, kTrmvCleanupStorageBindings),
+                    sizeof(TrmvCleanupPush), specialization()),
+      asvgf_adaptive_alpha_(context, load_port(context, "asvgf_adaptive_alpha"),
+                            bindings(context, kAdaptiveAlphaTexelBindings, kAdaptiveAlphaStorageBindings),
+                            sizeof(AdaptiveAlphaPush), specialization()),
+      asvgf_gradient_image_(context, load_port(context, "asvgf_gradient_image"),
+                            bindings(context, kGradientImageTexelBindings, kGradientImageStorageBindings),
+                            sizeof(GradientImagePush), specialization()) {}
 
 std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& more) const {
   static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
@@ -152,6 +176,37 @@ void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& i
                  {in.filtered_alpha, in.mesh, in.motion, in.valid, in.reshaded, in.prev_color, in.prev_mesh,
                   &color_alpha_out, &fetched_out, &clamped_out},
                  &push, groups_x(push.width), groups_y(push.height), "trmv_temporal");
+}
+
+void SvgfShaders::trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
+                               const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push) const {
+  batch.dispatch(trmv_spatial_, {&color_sigma, &surface, &depth_grad, &out}, &push, groups_x(push.width),
+                 groups_y(push.height), "trmv_spatial");
+}
+
+void SvgfShaders::trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,
+                               const GpuBuffer& clamped, const GpuBuffer& color_sigma_out,
+                               const GpuBuffer& weights_out, const TrmvCleanupPush& push) const {
+  batch.dispatch(trmv_cleanup_, {&color, &fetched_alpha_v, &clamped, &color_sigma_out, &weights_out}, &push,
+                 groups_x(push.width), groups_y(push.height), "trmv_cleanup");
+}
+
+void SvgfShaders::adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient, const GpuBuffer& alpha_out,
+                                 const GpuBuffer& lambda_out, const AdaptiveAlphaPush& push) const {
+  // One invocation per pixel and per stratum (adaptive_alpha_shared.h).
+  batch.dispatch(asvgf_adaptive_alpha_, {&gradient, &alpha_out, &lambda_out}, &push,
+                 groups_x(std::max(push.width, push.grid_width)), groups_y(std::max(push.height, push.grid_height)),
+                 "asvgf_adaptive_alpha");
+}
+
+void SvgfShaders::gradient_image(ComputeBatch& batch, const GradientImagePlanes& in, const GpuBuffer& values_out,
+                                 const GpuBuffer& surface_out, const GpuBuffer& depth_grad_out,
+                                 const GpuBuffer& mesh_out, const GradientImagePush& push) const {
+  // One invocation per stratum (gradient_image_shared.h).
+  batch.dispatch(asvgf_gradient_image_,
+                 {in.noisy_prev, in.source, in.surface, in.depth_grad, in.mesh, &values_out, &surface_out,
+                  &depth_grad_out, &mesh_out},
+                 &push, groups_x(push.grid_width), groups_y(push.grid_height), "asvgf_gradient_image");
 }
 
 }  // namespace rtdr

@@ -1,10 +1,12 @@
 // The SVGF ports' compute pipelines, created once, and one function per pass that records its dispatch into a
 // ComputeBatch. Every buffer is a plane in the layout of filters/svgf/planes_shared.h; the per-stream passes take the
 // direct and the indirect stream together: in one illumination buffer, and as two moments planes (Streams). The shaders
-// are filters/svgf/*.comp, filters/taa/taa.comp and filters/trmv/temporal.comp; each pass's bindings are listed in
-// its <stem>_shared.h.
+// are filters/svgf/*.comp, filters/taa/taa.comp, filters/trmv/*.comp and filters/asvgf/*.comp; each pass's bindings
+// are listed in its <stem>_shared.h.
 #pragma once
 
+#include "filters/asvgf/adaptive_alpha_shared.h"
+#include "filters/asvgf/gradient_image_shared.h"
 #include "filters/svgf/atrous_shared.h"
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/modulate_shared.h"
@@ -12,6 +14,8 @@
 #include "filters/svgf/tonemap_shared.h"
 #include "filters/svgf/variance_shared.h"
 #include "filters/taa/taa_shared.h"
+#include "filters/trmv/cleanup_shared.h"
+#include "filters/trmv/spatial_shared.h"
 #include "filters/trmv/temporal_shared.h"
 #include "gpu/compute.h"
 
@@ -54,6 +58,15 @@ struct TrmvTemporalPlanes {
   const GpuBuffer* prev_mesh;       // the previous id.mesh
 };
 
+// What A-SVGF's gradient image port reads (filters/asvgf/gradient_image_shared.h's bindings 0-4).
+struct GradientImagePlanes {
+  const GpuBuffer* noisy_prev;  // (C_i, gradient.prev_<stream>)
+  const GpuBuffer* source;      // gradient.source
+  const GpuBuffer* surface;     // (n, z)
+  const GpuBuffer* depth_grad;
+  const GpuBuffer* mesh;        // id.mesh
+};
+
 class SvgfShaders;
 
 // The push constants of the three shaders that read SVGF's parameters, filled field by field from the golden
@@ -94,6 +107,24 @@ class SvgfShaders {
   // [TRMV21 Eq. 2, Sec. 5]: c~, motion and history -> (cbar_i, alpha), the fetched and the clamped history.
   void trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& in, const GpuBuffer& color_alpha_out,
                      const GpuBuffer& fetched_out, const GpuBuffer& clamped_out, const TrmvTemporalPush& push) const;
+  // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h).
+  void trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
+                    const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push) const;
+  // [TRMV21 Eq. 7, Eq. 8, Sec. 5]: cbar_i and the histories -> (cbar_i, std) and (w_A, w_C, std)
+  // (filters/trmv/cleanup_shared.h).
+  void trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,
+                    const GpuBuffer& clamped, const GpuBuffer& color_sigma_out, const GpuBuffer& weights_out,
+                    const TrmvCleanupPush& push) const;
+  // A-SVGF [ASVGF18 Eq. 14-15, Sec. 3.5]: (delta^, Delta^) per stratum -> (lambda_max, alpha_i) per pixel and lambda
+  // per stratum (filters/asvgf/adaptive_alpha_shared.h).
+  void adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient, const GpuBuffer& alpha_out,
+                      const GpuBuffer& lambda_out, const AdaptiveAlphaPush& push) const;
+  // A-SVGF [ASVGF18 Eq. 3, Eq. 13, Sec. 3.4]: noisy colour, gradient samples and G-buffer -> per stratum (delta,
+  // Delta, l^(0), Var), the representative pixel's (n, z), depth gradient and (id.mesh, samples)
+  // (filters/asvgf/gradient_image_shared.h).
+  void gradient_image(ComputeBatch& batch, const GradientImagePlanes& in, const GpuBuffer& values_out,
+                      const GpuBuffer& surface_out, const GpuBuffer& depth_grad_out, const GpuBuffer& mesh_out,
+                      const GradientImagePush& push) const;
 
  private:
   // The specialization constants every SVGF port takes (the workgroup shape), then `more` (the a-trous kernel
@@ -106,6 +137,9 @@ class SvgfShaders {
   // The SVGF ports' workgroup shape on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
   uint32_t group_width_, group_height_;
   ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_, trmv_temporal_;
+  ComputePipeline trmv_spatial_, trmv_cleanup_;
+  // A-SVGF's ports.
+  ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_;
 };
 
 template <class Record>

@@ -1,0 +1,49 @@
+// One 1-D pass of TRMV's separable joint bilateral [TRMV21 Sec. 5] (the spatial filter and the clean-up's 9x9):
+// what its C++ (gpu/trmv_spatial_gpu.cpp, gpu/svgf_shaders.cpp) and GLSL (filters/trmv/spatial.comp) share, written
+// once: the binding count and the push-constant block. The workgroup shape is the SVGF ports'
+// (filters/svgf/planes_shared.h). Both compilers include this file; GLSL has the C preprocessor, and
+// core/shader_shared.h maps the types.
+//
+// Bindings (records row-major: filters/svgf/planes_shared.h):
+//   0 (c, std)   RGBA32F: the plane to filter; w the pixel's std (has_sigma_plane), else unread
+//   1 surface    RGBA32F (n, z), z = kNoSurfaceDepth without a surface (pack_surface)
+//   2 grad z     RG32F, per pixel
+//   3 (c', std)  written, std430 array of vec4: the filtered plane, w copied from the input (the next axis reads it)
+#ifndef RTDR_FILTERS_TRMV_SPATIAL_SHARED_H
+#define RTDR_FILTERS_TRMV_SPATIAL_SHARED_H
+
+#include "filters/svgf/planes_shared.h"
+
+#include "core/shader_shared.h"
+
+#ifdef __cplusplus
+namespace rtdr {
+#endif
+
+// The number of bindings (0..3 above): 3 inputs (storage texel buffers, or storage buffers when built for storage
+// inputs: core/shader_shared.h) and 1 storage buffer. gpu/svgf_shaders.cpp checks that both fit the limits the
+// context was chosen for (gpu/vulkan_context.h).
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialTexelBindings = 3;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialStorageBindings = 1;
+
+// The push-constant block: the frame's size, the axis, and the arguments trmv_spatial_axis reads
+// (filters/trmv/spatial.h) with SVGF's edge-stopping parameters (filters/svgf/svgf_params.h).
+struct TrmvSpatialPush {
+  RTDR_SHARED_UINT width;            // invocations outside the frame (the last tiles) do nothing
+  RTDR_SHARED_UINT height;
+  RTDR_SHARED_INT axis_x;            // the step e between taps: (1, 0) horizontal, (0, 1) vertical
+  RTDR_SHARED_INT axis_y;
+  RTDR_SHARED_INT radius;            // r >= 0: taps k = -r .. r
+  RTDR_SHARED_UINT has_sigma_plane;  // 1: the std is binding 0's w per pixel; 0: `sigma` everywhere
+  float sigma;                       // sigma_all, the spatial std in pixels
+  float sigma_z;                     // SvgfParams::sigma_z [SVGF17 Eq. 3]
+  float sigma_n;                     // SvgfParams::sigma_n [SVGF17 Eq. 4]
+  float epsilon;                     // SvgfParams::epsilon [SVGF17 Eq. 3]
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(TrmvSpatialPush) == 40, "ten 4-byte fields, the std430 layout of the GLSL block");
+}  // namespace rtdr
+#endif
+
+#endif  // RTDR_FILTERS_TRMV_SPATIAL_SHARED_H

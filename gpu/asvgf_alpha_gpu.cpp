@@ -1,0 +1,54 @@
+// The Vulkan port of A-SVGF's adaptive temporal weight. See asvgf_alpha_gpu.h; the shader is
+// filters/asvgf/adaptive_alpha.comp.
+#include "gpu/asvgf_alpha_gpu.h"
+
+#include "core/error.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+
+#include <string>
+
+namespace rtdr {
+
+AdaptiveAlpha adaptive_alpha_vulkan(VulkanContext& context, const GradientValues& g, int s, int width, int height,
+                                    float alpha, int radius, double* ms) {
+  if (g.delta.width != g.norm.width || g.delta.height != g.norm.height)
+    throw Error("adaptive_alpha_vulkan: delta^ is " + std::to_string(g.delta.width) + "x" +
+                std::to_string(g.delta.height) + ", Delta^ " + std::to_string(g.norm.width) + "x" +
+                std::to_string(g.norm.height));
+  if (s < 1 || radius < 0 || width < 0 || height < 0)
+    throw Error("adaptive_alpha_vulkan: needs s >= 1, radius >= 0 and a size >= 0, got s " + std::to_string(s) +
+                ", radius " + std::to_string(radius));
+  const int gw = g.norm.width, gh = g.norm.height;
+  AdaptiveAlpha out{FloatPlane(gw, gh), FloatPlane(width, height), FloatPlane(width, height)};
+  if (out.lambda.data.empty() && out.alpha.data.empty()) return out;
+
+  // (delta^, Delta^) per stratum.
+  Vec2Plane gradient(gw, gh);
+  for (size_t i = 0; i < gradient.data.size(); ++i) gradient.data[i] = glm::vec2(g.delta.data[i], g.norm.data[i]);
+  const auto gradient_buffer = plane_buffer(context, gw, gh, TexelFormat::RG32F),
+             alpha_buffer = plane_buffer(context, width, height, TexelFormat::RG32F),
+             lambda_buffer = plane_buffer(context, gw, gh, TexelFormat::R32F);
+  pack_vec2(gradient, *gradient_buffer);
+
+  const AdaptiveAlphaPush push{.width = uint32_t(width),
+                               .height = uint32_t(height),
+                               .grid_width = uint32_t(gw),
+                               .grid_height = uint32_t(gh),
+                               .stratum_size = s,
+                               .radius = radius,
+                               .alpha = alpha};
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.adaptive_alpha(batch, *gradient_buffer, *alpha_buffer, *lambda_buffer, push);
+      },
+      ms);
+
+  out.lambda = unpack_channel(*lambda_buffer, gw, gh, 1, 0);
+  out.lambda_max = unpack_channel(*alpha_buffer, width, height, 2, 0);
+  out.alpha = unpack_channel(*alpha_buffer, width, height, 2, 1);
+  return out;
+}
+
+}  // namespace rtdr

@@ -1,0 +1,90 @@
+// The Vulkan port of A-SVGF's gradient image. See asvgf_gradient_gpu.h; the shader is
+// filters/asvgf/gradient_image.comp.
+#include "gpu/asvgf_gradient_gpu.h"
+
+#include "core/error.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+
+#include <cstring>
+#include <string>
+
+namespace rtdr {
+
+GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& noisy, const UIntPlane& source,
+                                    const FloatPlane& prev_luminance, const SurfacePlanes& surface, int s,
+                                    double* ms) {
+  // The checks of gradient_image (filters/asvgf/gradient_image.cpp), with its messages.
+  const int w = noisy.width, h = noisy.height;
+  if (s < 1) throw Error("gradient image: stratum size " + std::to_string(s) + " < 1");
+  const auto sized = [&](const auto& p) { return p.width == w && p.height == h; };
+  if (!sized(source) || !sized(prev_luminance) || !sized(surface.depth) || !sized(surface.mesh) ||
+      !sized(surface.depth_grad) || !sized(surface.normal))
+    throw Error("gradient image: the gradient planes and the G-buffer are not all " + std::to_string(w) + "x" +
+                std::to_string(h));
+  const int sw = (w + s - 1) / s, sh = (h + s - 1) / s;  // partial strata at the right and bottom
+  GradientImage g;
+  g.stratum_size = s;
+  g.values = {FloatPlane(sw, sh), FloatPlane(sw, sh), FloatPlane(sw, sh), FloatPlane(sw, sh)};
+  g.surface.depth = FloatPlane(sw, sh);
+  g.surface.depth_grad = Vec2Plane(sw, sh);
+  g.surface.normal = RgbPlane(sw, sh);
+  g.surface.mesh = UIntPlane(sw, sh);
+  if (g.values.delta.data.empty()) return g;
+
+  const auto noisy_prev = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             source_buffer = plane_buffer(context, w, h, TexelFormat::R32UI),
+             surface_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             depth_grad = plane_buffer(context, w, h, TexelFormat::RG32F),
+             mesh = plane_buffer(context, w, h, TexelFormat::R32UI);
+  // (C_i, f_{i-1}): gradient.prev_<stream> in w.
+  pack_rgb(noisy, *noisy_prev);
+  for (size_t i = 0; i < prev_luminance.data.size(); ++i) noisy_prev->data()[4 * i + 3] = prev_luminance.data[i];
+  pack_ids(source, *source_buffer);
+  pack_surface(surface, *surface_buffer);
+  pack_vec2(surface.depth_grad, *depth_grad);
+  pack_ids(surface.mesh, *mesh);
+  const auto values = plane_buffer(context, sw, sh, TexelFormat::RGBA32F),
+             surface_out = plane_buffer(context, sw, sh, TexelFormat::RGBA32F),
+             depth_grad_out = plane_buffer(context, sw, sh, TexelFormat::RG32F),
+             mesh_samples = plane_buffer(context, sw, sh, TexelFormat::RG32F);  // (id.mesh, samples): 2 words
+
+  const GradientImagePush push{.width = uint32_t(w),
+                               .height = uint32_t(h),
+                               .grid_width = uint32_t(sw),
+                               .grid_height = uint32_t(sh),
+                               .stratum_size = s};
+  const GradientImagePlanes planes{noisy_prev.get(), source_buffer.get(), surface_buffer.get(), depth_grad.get(),
+                                   mesh.get()};
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) {
+        shaders.gradient_image(batch, planes, *values, *surface_out, *depth_grad_out, *mesh_samples, push);
+      },
+      ms);
+
+  // A stratum holds at most one gradient sample (gradient_image.h); the golden pass throws at the second.
+  const float* ids = mesh_samples->data();
+  for (int sy = 0; sy < sh; ++sy)
+    for (int sx = 0; sx < sw; ++sx) {
+      const size_t i = size_t(sy) * size_t(sw) + size_t(sx);
+      uint32_t id, samples;
+      std::memcpy(&id, ids + 2 * i, sizeof(id));
+      std::memcpy(&samples, ids + 2 * i + 1, sizeof(samples));
+      if (samples > 1)
+        throw Error("stratum (" + std::to_string(sx) + ", " + std::to_string(sy) + ") holds two gradient samples");
+      g.surface.mesh.data[i] = id;
+    }
+  g.values.delta = unpack_channel(*values, sw, sh, 4, 0);
+  g.values.norm = unpack_channel(*values, sw, sh, 4, 1);
+  g.values.luminance = unpack_channel(*values, sw, sh, 4, 2);
+  g.values.variance = unpack_channel(*values, sw, sh, 4, 3);
+  g.surface.normal = unpack_rgb(*surface_out, sw, sh);
+  g.surface.depth = unpack_channel(*surface_out, sw, sh, 4, 3);
+  const FloatPlane gx = unpack_channel(*depth_grad_out, sw, sh, 2, 0),
+                   gy = unpack_channel(*depth_grad_out, sw, sh, 2, 1);
+  for (size_t i = 0; i < gx.data.size(); ++i) g.surface.depth_grad.data[i] = glm::vec2(gx.data[i], gy.data[i]);
+  return g;
+}
+
+}  // namespace rtdr

@@ -1,0 +1,142 @@
+// The Vulkan ports of TRMV's spatial filter and clean-up. See trmv_spatial_gpu.h; the shaders are
+// filters/trmv/spatial.comp and filters/trmv/cleanup.comp.
+#include "gpu/trmv_spatial_gpu.h"
+
+#include "core/error.h"
+#include "filters/trmv/spatial.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+
+#include <memory>
+#include <string>
+
+namespace rtdr {
+
+namespace {
+
+// The size checks of trmv_spatial_axis and trmv_cleanup_pass (filters/trmv/spatial.cpp, filters/trmv/cleanup.cpp),
+// with their messages.
+void check_surface(int w, int h, const SurfacePlanes& s, const char* what) {
+  if (!has_size(s.depth, w, h) || !has_size(s.depth_grad, w, h) || !has_size(s.normal, w, h) ||
+      !has_size(s.mesh, w, h))
+    throw Error(std::string(what) + ": the G-buffer planes are not all " + std::to_string(w) + "x" +
+                std::to_string(h) + " like the filtered plane");
+}
+
+void check_radius(int radius, const char* what) {
+  if (radius < 0) throw Error(std::string(what) + ": the radius must be >= 0, got " + std::to_string(radius));
+}
+
+// Channel w of record i of a buffer of 4-float records (pack_rgb wrote 0 there).
+void set_w(GpuBuffer& records, size_t i, float w) { records.data()[4 * i + 3] = w; }
+
+// The G-buffer planes the 1-D passes read: surface records and depth gradients.
+struct Guides {
+  std::unique_ptr<GpuBuffer> surface, depth_grad;
+};
+
+Guides pack_guides(VulkanContext& context, const SurfacePlanes& s, int w, int h) {
+  Guides g{plane_buffer(context, w, h, TexelFormat::RGBA32F), plane_buffer(context, w, h, TexelFormat::RG32F)};
+  pack_surface(s, *g.surface);
+  pack_vec2(s.depth_grad, *g.depth_grad);
+  return g;
+}
+
+// The push constants of one 1-D pass along `axis` (trmv_spatial_axis's arguments).
+TrmvSpatialPush spatial_push(int w, int h, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
+                             const SvgfParams& edges) {
+  return TrmvSpatialPush{.width = uint32_t(w),
+                         .height = uint32_t(h),
+                         .axis_x = axis.x,
+                         .axis_y = axis.y,
+                         .radius = radius,
+                         .has_sigma_plane = sigma_plane ? 1u : 0u,
+                         .sigma = sigma_all,
+                         .sigma_z = edges.sigma_z,
+                         .sigma_n = edges.sigma_n,
+                         .epsilon = edges.epsilon};
+}
+
+}  // namespace
+
+RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s,
+                             const TrmvParams& params, const SvgfParams& edges, double* ms) {
+  const int w = c.width, h = c.height;
+  check_surface(w, h, s, "trmv spatial filter");
+  check_radius(params.spatial_radius, "trmv_spatial_vulkan");
+  if (c.data.empty()) return RgbPlane(w, h);
+  const Guides g = pack_guides(context, s, w, h);
+  const auto input = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             rows = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             out = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+  pack_rgb(c, *input);
+  // Horizontal, then vertical: the separable form of the 31x31 joint bilateral [TRMV21 Sec. 5]
+  // (trmv_spatial_pass), spatial_sigma everywhere.
+  const TrmvSpatialPush horizontal =
+      spatial_push(w, h, kTrmvHorizontal, params.spatial_radius, false, params.spatial_sigma, edges);
+  const TrmvSpatialPush vertical =
+      spatial_push(w, h, kTrmvVertical, params.spatial_radius, false, params.spatial_sigma, edges);
+  const SvgfShaders shaders(context);
+  ComputeBatch batch(context, 2);
+  shaders.trmv_spatial(batch, *input, *g.surface, *g.depth_grad, *rows, horizontal);
+  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *out, vertical);
+  batch.run();
+  batch.total_time(ms);
+  return unpack_rgb(*out, w, h);
+}
+
+TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporalOutput& temporal,
+                                      const FloatPlane& alpha_v, const SurfacePlanes& s, const TrmvParams& params,
+                                      const SvgfParams& edges, double* ms) {
+  const int w = temporal.color.width, h = temporal.color.height;
+  if (!has_size(temporal.fetched, w, h) || !has_size(temporal.clamped, w, h) || !empty_or_size(alpha_v, w, h))
+    throw Error("trmv clean-up pass: the histories and alpha^V are not all " + std::to_string(w) + "x" +
+                std::to_string(h) + " like cbar_i");
+  check_surface(w, h, s, "trmv spatial filter");
+  const int radius = (params.cleanup_size - 1) / 2;
+  check_radius(radius, "trmv_cleanup_vulkan");
+  TrmvCleanupOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
+  if (out.sigma.data.empty()) return out;
+
+  const bool has_alpha_v = alpha_v.width != 0;
+  const auto color = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             fetched_alpha_v = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             clamped = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+  pack_rgb(temporal.color, *color);
+  // (cbar_{i-1}, alpha^V): alpha^V in w where there is one.
+  pack_rgb(temporal.fetched, *fetched_alpha_v);
+  if (has_alpha_v)
+    for (size_t i = 0; i < alpha_v.data.size(); ++i) set_w(*fetched_alpha_v, i, alpha_v.data[i]);
+  pack_rgb(temporal.clamped, *clamped);
+  const Guides g = pack_guides(context, s, w, h);
+  // (cbar_i, std), then after each 1-D pass (c', std); and (w_A, w_C, std, 0).
+  const auto color_sigma = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             rows = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             filtered = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             weights = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+
+  const TrmvCleanupPush push{.width = uint32_t(w),
+                             .height = uint32_t(h),
+                             .has_alpha_v = has_alpha_v ? 1u : 0u,
+                             .alpha = params.alpha,
+                             .cleanup_eps = params.cleanup_eps,
+                             .cleanup_sigma_max = params.cleanup_sigma_max};
+  // Eq. 7-8 at every pixel, then the 9x9 separable joint bilateral with each pixel's std (trmv_cleanup_pass).
+  const TrmvSpatialPush horizontal = spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges);
+  const TrmvSpatialPush vertical = spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges);
+  const SvgfShaders shaders(context);
+  ComputeBatch batch(context, 3);
+  shaders.trmv_cleanup(batch, *color, *fetched_alpha_v, *clamped, *color_sigma, *weights, push);
+  shaders.trmv_spatial(batch, *color_sigma, *g.surface, *g.depth_grad, *rows, horizontal);
+  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *filtered, vertical);
+  batch.run();
+  batch.total_time(ms);
+
+  out.color = unpack_rgb(*filtered, w, h);
+  out.w_a = unpack_channel(*weights, w, h, 4, 0);
+  out.w_c = unpack_channel(*weights, w, h, 4, 1);
+  out.sigma = unpack_channel(*weights, w, h, 4, 2);
+  return out;
+}
+
+}  // namespace rtdr

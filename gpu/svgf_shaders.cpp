@@ -23,12 +23,18 @@ static_assert(kTrmvSpatialTexelBindings + kTrmvSpatialStorageBindings <= kStorag
                   kTrmvCleanupTexelBindings + kTrmvCleanupStorageBindings <= kStorageInputBindings &&
                   kTrmvCleanupTexelBindings <= kTexelInputBindings,
               "TRMV's spatial and clean-up ports fit the bindings VulkanContext chose its input kind for");
+static_assert(kTrmvFalloffTexelBindings + kTrmvFalloffStorageBindings <= kStorageInputBindings &&
+                  kTrmvFalloffTexelBindings <= kTexelInputBindings,
+              "TRMV's falloff port fits the bindings VulkanContext chose its input kind for");
 static_assert(kAdaptiveAlphaTexelBindings + kAdaptiveAlphaStorageBindings <= kStorageInputBindings &&
                   kAdaptiveAlphaTexelBindings <= kTexelInputBindings,
               "A-SVGF's adaptive alpha port fits the bindings VulkanContext chose its input kind for");
 static_assert(kGradientImageTexelBindings + kGradientImageStorageBindings <= kStorageInputBindings &&
                   kGradientImageTexelBindings <= kTexelInputBindings,
               "A-SVGF's gradient image port fits the bindings VulkanContext chose its input kind for");
+static_assert(kGradientAtrousTexelBindings + kGradientAtrousStorageBindings <= kStorageInputBindings &&
+                  kGradientAtrousTexelBindings <= kTexelInputBindings,
+              "A-SVGF's gradient reconstruction port fits the bindings VulkanContext chose its input kind for");
 
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
@@ -109,12 +115,18 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
       trmv_cleanup_(context, load_port(context, "trmv_cleanup"),
                     bindings(context, kTrmvCleanupTexelBindings, kTrmvCleanupStorageBindings),
                     sizeof(TrmvCleanupPush), specialization()),
+      trmv_falloff_(context, load_port(context, "trmv_falloff"),
+                    bindings(context, kTrmvFalloffTexelBindings, kTrmvFalloffStorageBindings),
+                    sizeof(TrmvFalloffPush), specialization()),
       asvgf_adaptive_alpha_(context, load_port(context, "asvgf_adaptive_alpha"),
                             bindings(context, kAdaptiveAlphaTexelBindings, kAdaptiveAlphaStorageBindings),
                             sizeof(AdaptiveAlphaPush), specialization()),
       asvgf_gradient_image_(context, load_port(context, "asvgf_gradient_image"),
                             bindings(context, kGradientImageTexelBindings, kGradientImageStorageBindings),
-                            sizeof(GradientImagePush), specialization()) {}
+                            sizeof(GradientImagePush), specialization()),
+      asvgf_gradient_atrous_(context, load_port(context, "asvgf_gradient_atrous"),
+                             bindings(context, kGradientAtrousTexelBindings, kGradientAtrousStorageBindings),
+                             sizeof(GradientAtrousPush), specialization()) {}
 
 std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& more) const {
   static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1 && kAtrousKernelSizeConstant == 2,
@@ -191,6 +203,14 @@ void SvgfShaders::trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, cons
                  groups_x(push.width), groups_y(push.height), "trmv_cleanup");
 }
 
+void SvgfShaders::trmv_falloff(ComputeBatch& batch, const TrmvFalloffPlanes& in, const GpuBuffer& theta_alpha_out,
+                               const TrmvFalloffPush& push) const {
+  batch.dispatch(trmv_falloff_,
+                 {in.position, in.normal, in.mesh, in.motion, in.valid, in.prev_position, in.prev_mesh,
+                  &theta_alpha_out},
+                 &push, groups_x(push.width), groups_y(push.height), "trmv_falloff");
+}
+
 void SvgfShaders::adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient, const GpuBuffer& alpha_out,
                                  const GpuBuffer& lambda_out, const AdaptiveAlphaPush& push) const {
   // One invocation per pixel and per stratum (adaptive_alpha_shared.h).
@@ -207,6 +227,14 @@ void SvgfShaders::gradient_image(ComputeBatch& batch, const GradientImagePlanes&
                  {in.noisy_prev, in.source, in.surface, in.depth_grad, in.mesh, &values_out, &surface_out,
                   &depth_grad_out, &mesh_out},
                  &push, groups_x(push.grid_width), groups_y(push.grid_height), "asvgf_gradient_image");
+}
+
+void SvgfShaders::gradient_atrous(ComputeBatch& batch, const GpuBuffer& values, const GpuBuffer& surface,
+                                  const GpuBuffer& depth_grad, const GpuBuffer& mesh, const GpuBuffer& values_out,
+                                  const GradientAtrousPush& push) const {
+  // One invocation per stratum (gradient_atrous_shared.h).
+  batch.dispatch(asvgf_gradient_atrous_, {&values, &surface, &depth_grad, &mesh, &values_out}, &push,
+                 groups_x(push.grid_width), groups_y(push.grid_height), "asvgf_gradient_atrous");
 }
 
 }  // namespace rtdr

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "filters/asvgf/adaptive_alpha_shared.h"
+#include "filters/asvgf/gradient_atrous_shared.h"
 #include "filters/asvgf/gradient_image_shared.h"
 #include "filters/svgf/atrous_shared.h"
 #include "filters/svgf/svgf_params.h"
@@ -15,6 +16,7 @@
 #include "filters/svgf/variance_shared.h"
 #include "filters/taa/taa_shared.h"
 #include "filters/trmv/cleanup_shared.h"
+#include "filters/trmv/falloff_shared.h"
 #include "filters/trmv/spatial_shared.h"
 #include "filters/trmv/temporal_shared.h"
 #include "gpu/compute.h"
@@ -56,6 +58,18 @@ struct TrmvTemporalPlanes {
   const GpuBuffer* reshaded;        // (re-shaded history, its validity)
   const GpuBuffer* prev_color;      // cbar_{i-1}
   const GpuBuffer* prev_mesh;       // the previous id.mesh
+};
+
+// What TRMV's falloff pass reads (filters/trmv/falloff_shared.h's bindings 0-6); an optional plane that is empty
+// is one unread texel, and the push constants say so.
+struct TrmvFalloffPlanes {
+  const GpuBuffer* position;       // s_i
+  const GpuBuffer* normal;         // n(s_i)
+  const GpuBuffer* mesh;           // id.mesh
+  const GpuBuffer* motion;         // m^V
+  const GpuBuffer* valid;          // the shadow motion's validity
+  const GpuBuffer* prev_position;  // the previous frame's position
+  const GpuBuffer* prev_mesh;      // the previous id.mesh
 };
 
 // What A-SVGF's gradient image port reads (filters/asvgf/gradient_image_shared.h's bindings 0-4).
@@ -107,6 +121,10 @@ class SvgfShaders {
   // [TRMV21 Eq. 2, Sec. 5]: c~, motion and history -> (cbar_i, alpha), the fetched and the clamped history.
   void trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& in, const GpuBuffer& color_alpha_out,
                      const GpuBuffer& fetched_out, const GpuBuffer& clamped_out, const TrmvTemporalPush& push) const;
+  // [TRMV21 Eq. 4]: the receiver, the shadow motion and the previous positions -> (theta, alpha^V)
+  // (filters/trmv/falloff_shared.h).
+  void trmv_falloff(ComputeBatch& batch, const TrmvFalloffPlanes& in, const GpuBuffer& theta_alpha_out,
+                    const TrmvFalloffPush& push) const;
   // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h).
   void trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
                     const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push) const;
@@ -125,6 +143,12 @@ class SvgfShaders {
   void gradient_image(ComputeBatch& batch, const GradientImagePlanes& in, const GpuBuffer& values_out,
                       const GpuBuffer& surface_out, const GpuBuffer& depth_grad_out, const GpuBuffer& mesh_out,
                       const GradientImagePush& push) const;
+  // A-SVGF [ASVGF18 Eq. 7-12, Sec. 3.4]: one iteration of the gradient's reconstruction, per stratum (delta^, Delta^,
+  // l^(k), Var) and the strata's (n, z), depth gradient and id.mesh -> (delta^, Delta^, l^(k+1), Var)
+  // (filters/asvgf/gradient_atrous_shared.h).
+  void gradient_atrous(ComputeBatch& batch, const GpuBuffer& values, const GpuBuffer& surface,
+                       const GpuBuffer& depth_grad, const GpuBuffer& mesh, const GpuBuffer& values_out,
+                       const GradientAtrousPush& push) const;
 
  private:
   // The specialization constants every SVGF port takes (the workgroup shape), then `more` (the a-trous kernel
@@ -138,8 +162,9 @@ class SvgfShaders {
   uint32_t group_width_, group_height_;
   ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_, trmv_temporal_;
   ComputePipeline trmv_spatial_, trmv_cleanup_;
+  ComputePipeline trmv_falloff_;
   // A-SVGF's ports.
-  ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_;
+  ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_, asvgf_gradient_atrous_;
 };
 
 template <class Record>

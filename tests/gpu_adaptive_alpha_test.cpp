@@ -145,13 +145,10 @@ TEST_CASE("the adaptive alpha port matches adaptive_alpha_pass on random stratum
 
 TEST_CASE("the adaptive alpha port matches adaptive_alpha_pass on the gradients of a rendered frame pair") {
   const auto context = validated_context();
-  const Scene scene = load_scene("pillars");
-  // 50x29 with 3x3 strata: a partial stratum column and row at the border.
-  const int w = 50, h = 29;
-  const Frame previous = render_frame_with_gradients(scene, 3, w, h, {}, {}, nullptr);
-  const Frame current = render_frame_with_gradients(scene, 4, w, h, {}, {}, &previous);
-  const int s = std::stoi(current.attributes.at("rtdr.gradient.stratum_size"));
-  const SurfacePlanes surface = SurfacePlanes::from_frame(current);
+  const test::GradientFrame pair = test::pillars_gradient_frame();  // pillars frame 4 at 50x29 (asvgf_fixtures.h)
+  const Frame& current = pair.frame;
+  const int s = pair.stratum_size, w = current.width(), h = current.height();
+  const SurfacePlanes& surface = pair.surface;
   for (const std::string stream : {"direct", "indirect"}) {
     INFO("stream " << stream);
     // As the asvgf method feeds the pass (filters/svgf/svgf.cpp): the gradient image of the stream, reconstructed

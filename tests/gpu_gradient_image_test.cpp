@@ -28,6 +28,7 @@
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 
+#include "asvgf_fixtures.h"
 #include "gpu_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -182,13 +183,10 @@ TEST_CASE("the gradient image port matches gradient_image on random frames") {
 
 TEST_CASE("the gradient image port matches gradient_image on a rendered frame pair with gradient samples") {
   const auto context = validated_context();
-  const Scene scene = load_scene("pillars");
-  // 50x29 with 3x3 strata: a partial stratum column and row at the border.
-  const int w = 50, h = 29;
-  const Frame previous = render_frame_with_gradients(scene, 3, w, h, {}, {}, nullptr);
-  const Frame current = render_frame_with_gradients(scene, 4, w, h, {}, {}, &previous);
-  const int s = std::stoi(current.attributes.at("rtdr.gradient.stratum_size"));
-  const SurfacePlanes surface = SurfacePlanes::from_frame(current);
+  const test::GradientFrame pair = test::pillars_gradient_frame();  // pillars frame 4 at 50x29 (asvgf_fixtures.h)
+  const Frame& current = pair.frame;
+  const int s = pair.stratum_size;
+  const SurfacePlanes& surface = pair.surface;
   const UIntPlane& source = current.uint_channel("gradient.source");
   size_t samples = 0;
   for (const uint32_t j : source.data) samples += j != kInvalidId;

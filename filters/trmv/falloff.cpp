@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/trmv/falloff_shared.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -14,10 +15,9 @@
 namespace rtdr {
 namespace {
 
-// A static shadow: s^V_{i-1} within this relative distance of s_i has no direction (falloff.h). 1e-6 is about
-// eight float epsilons (2^-23 = 1.2e-7) of the coordinates, the rounding of two positions that are the same
-// point; relative to 1 + |s_i| so that points near the origin get an absolute 1e-6.
-constexpr float kFalloffSamePointRelative = 1e-6f;
+// A static shadow: s^V_{i-1} within this relative distance of s_i has no direction (falloff.h); the value and why
+// it is 1e-6: filters/trmv/falloff_shared.h, which the Vulkan port (filters/trmv/falloff.comp) reads too.
+constexpr float kFalloffSamePointRelative = kTrmvFalloffSamePointRelative;
 
 void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
   const int w = r.position.width, h = r.position.height;

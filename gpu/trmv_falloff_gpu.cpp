@@ -1,0 +1,81 @@
+// The Vulkan port of TRMV's non-planar receiver falloff. See trmv_falloff_gpu.h; the shader is
+// filters/trmv/falloff.comp.
+#include "gpu/trmv_falloff_gpu.h"
+
+#include "core/error.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <string>
+
+namespace rtdr {
+
+namespace {
+
+static_assert(kTrmvFalloffHalfPi == glm::half_pi<float>(), "the shader's pi/2 is the golden pass's float");
+
+// The size checks of trmv_falloff_pass (filters/trmv/falloff.cpp's check_sizes), with its messages.
+void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
+  const int w = r.position.width, h = r.position.height;
+  if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(shadow.motion, w, h) ||
+      !empty_or_size(shadow.valid, w, h))
+    throw Error("trmv falloff pass: the receiver's and the shadow motion's planes are not all " + std::to_string(w) +
+                "x" + std::to_string(h));
+  if (prev.position.width != 0 && !has_size(prev.mesh, prev.position.width, prev.position.height))
+    throw Error("trmv falloff pass: the previous id.mesh is not the previous position's size");
+}
+
+}  // namespace
+
+TrmvFalloffOutput trmv_falloff_vulkan(VulkanContext& context, const TrmvReceiver& receiver, const TrmvMotion& shadow,
+                                      const TrmvPreviousPositions& prev, const TrmvParams& params, double* ms) {
+  check_sizes(receiver, shadow, prev);
+  const int w = receiver.position.width, h = receiver.position.height;
+  TrmvFalloffOutput out{FloatPlane(w, h), FloatPlane(w, h)};
+  if (out.theta.data.empty()) return out;
+
+  // Each optional plane is given or empty; an empty one is one texel the shader never reads (falloff_shared.h).
+  const bool has_prev = prev.position.width != 0, has_valid = shadow.valid.width != 0;
+  const int pw = has_prev ? prev.position.width : 0, ph = has_prev ? prev.position.height : 0;
+  const auto position = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             normal = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             mesh = plane_buffer(context, w, h, TexelFormat::R32UI),
+             motion = plane_buffer(context, w, h, TexelFormat::RG32F),
+             valid = plane_buffer(context, shadow.valid.width, shadow.valid.height, TexelFormat::R32UI),
+             prev_position = plane_buffer(context, pw, ph, TexelFormat::RGBA32F),
+             prev_mesh = plane_buffer(context, pw, ph, TexelFormat::R32UI);
+  pack_rgb(receiver.position, *position);
+  pack_rgb(receiver.normal, *normal);
+  pack_ids(receiver.mesh, *mesh);
+  pack_vec2(shadow.motion, *motion);
+  if (has_valid) pack_ids(shadow.valid, *valid);
+  if (has_prev) {
+    pack_rgb(prev.position, *prev_position);
+    pack_ids(prev.mesh, *prev_mesh);
+  }
+  // (theta, alpha^V) per pixel.
+  const auto theta_alpha = plane_buffer(context, w, h, TexelFormat::RG32F);
+
+  const TrmvFalloffPush push{.width = uint32_t(w),
+                             .height = uint32_t(h),
+                             .prev_width = uint32_t(pw),
+                             .prev_height = uint32_t(ph),
+                             .has_prev = has_prev ? 1u : 0u,
+                             .has_valid = has_valid ? 1u : 0u,
+                             .alpha = params.alpha,
+                             .falloff_sigma = params.falloff_sigma};
+  const TrmvFalloffPlanes planes{position.get(), normal.get(),        mesh.get(),     motion.get(),
+                                 valid.get(),    prev_position.get(), prev_mesh.get()};
+  run_pass(
+      context,
+      [&](const SvgfShaders& shaders, ComputeBatch& batch) { shaders.trmv_falloff(batch, planes, *theta_alpha, push); },
+      ms);
+
+  out.theta = unpack_channel(*theta_alpha, w, h, 2, 0);
+  out.alpha_v = unpack_channel(*theta_alpha, w, h, 2, 1);
+  return out;
+}
+
+}  // namespace rtdr

@@ -1,5 +1,6 @@
 // The image types the golden passes read and write: planes of one value per pixel (core/frame.h's Plane),
 // row-major, y down. Colours are linear RGB; "luminance" is Rec. 709 Y (core/color.h).
+// Illumination planes hold demodulated radiance, divided by the albedo [SVGF17 Sec. 3].
 #pragma once
 
 #include "core/frame.h"

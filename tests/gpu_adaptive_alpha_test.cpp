@@ -54,13 +54,6 @@ Bounds derived_bounds() {
   return Bounds{3.0 * e, 3.0 * e, 9.0 * e};
 }
 
-// Max |a - b| over every value (a NaN on either side: infinite, eval/frame_diff.h).
-double max_difference(const FloatPlane& a, const FloatPlane& b) {
-  double m = 0.0;
-  for (size_t i = 0; i < b.data.size(); ++i) m = std::max(m, abs_difference(a.data[i], b.data[i]));
-  return m;
-}
-
 // Port and golden pass on the same inputs: within the banner's bound, or bit-identical on a CPU device.
 void check_port(VulkanContext& context, const GradientValues& g, int s, int w, int h, float alpha, int radius,
                 double* ms = nullptr) {

@@ -123,6 +123,36 @@ inline RgbErrors compare_rgb(const RgbPlane& gpu, const RgbPlane& golden) {
   return e;
 }
 
+// Max |a - b| over every pixel and channel (a NaN on either side: infinite).
+inline double max_difference(const RgbPlane& a, const RgbPlane& b) {
+  const RgbErrors e = compare_rgb(a, b);
+  return std::max({e.abs.r, e.abs.g, e.abs.b});
+}
+
+// Max |a - b| over every value (a NaN on either side: infinite).
+inline double max_difference(const FloatPlane& a, const FloatPlane& b) {
+  double m = 0.0;
+  for (size_t i = 0; i < b.data.size(); ++i) m = std::max(m, abs_difference(a.data[i], b.data[i]));
+  return m;
+}
+
+// The largest channel value of a plane: C in the bounds below.
+inline double max_value(const RgbPlane& p) {
+  double m = 0.0;
+  for (const glm::vec3& v : p.data) m = std::max({m, double(v.r), double(v.g), double(v.b)});
+  return m;
+}
+
+// The bound on TRMV's separable joint bilateral (two 1-D passes of radius r) for inputs of largest value C
+// (`cmax`), derived in tests/gpu_trmv_spatial_test.cpp: each tap weight may differ by D = ln 2 sigma_n 2^-21 +
+// `weight_ulps` e (the device's pow and exp, and the divisions), e = 2^-23.
+inline double bilateral_bound(int radius, double sigma_n, double cmax, double weight_ulps) {
+  const double e = std::ldexp(1.0, -23);
+  const double d = std::log(2.0) * sigma_n * std::ldexp(1.0, -21) + weight_ulps * e;
+  const int n = 2 * radius + 1;
+  return 2.0 * (2.0 * radius * d + (4.0 * n + 4.0) * e) * cmax;
+}
+
 // Checks a port's RGB output against the golden one within the stated per-channel bounds (a relative bound of
 // infinity checks the absolute error alone).
 inline void check_rgb_within(const RgbPlane& gpu, const RgbPlane& golden, double max_abs,

@@ -43,13 +43,6 @@ using namespace rtdr::gpu_test;
 
 namespace {
 
-// Max |a - b| over every value (a NaN on either side: infinite, eval/frame_diff.h).
-double max_difference(const FloatPlane& a, const FloatPlane& b) {
-  double m = 0.0;
-  for (size_t i = 0; i < b.data.size(); ++i) m = std::max(m, abs_difference(a.data[i], b.data[i]));
-  return m;
-}
-
 // L: the largest |luminance| of a covered pixel.
 double largest_luminance(const RgbPlane& noisy, const SurfacePlanes& surface) {
   double m = 0.0;

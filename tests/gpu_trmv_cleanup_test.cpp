@@ -39,23 +39,9 @@ namespace {
 
 constexpr double kE = 0x1p-23;
 
-// The banner's colour bound for radius r and inputs of largest value C (`cmax`).
-double colour_bound(int radius, double sigma_n, double cmax) {
-  const double d = std::log(2.0) * sigma_n * std::ldexp(1.0, -21) + 24.0 * kE;
-  const int n = 2 * radius + 1;
-  return 2.0 * (2.0 * radius * d + (4.0 * n + 4.0) * kE) * cmax;
-}
-
-double max_value(const RgbPlane& p) {
-  double m = 0.0;
-  for (const glm::vec3& v : p.data) m = std::max({m, double(v.r), double(v.g), double(v.b)});
-  return m;
-}
-
-double max_difference(const RgbPlane& a, const RgbPlane& b) {
-  const RgbErrors e = compare_rgb(a, b);
-  return std::max({e.abs.r, e.abs.g, e.abs.b});
-}
+// The banner's colour bound for radius r and inputs of largest value C (`cmax`): the spatial pass's, with the
+// std's own error (4e more) in D.
+double colour_bound(int radius, double sigma_n, double cmax) { return bilateral_bound(radius, sigma_n, cmax, 24.0); }
 
 // Max |a - b| - bound(golden) over the pixels (<= 0: within), and the max |a - b| itself.
 template <class Bound>

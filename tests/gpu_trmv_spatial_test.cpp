@@ -51,24 +51,7 @@ using namespace rtdr::gpu_test;
 namespace {
 
 // The banner's bound of the two 1-D passes, radius r, for inputs of largest value C (`cmax`).
-double derived_bound(int radius, double sigma_n, double cmax) {
-  const double e = std::ldexp(1.0, -23);
-  const double d = std::log(2.0) * sigma_n * std::ldexp(1.0, -21) + 20.0 * e;
-  const int n = 2 * radius + 1;
-  return 2.0 * (2.0 * radius * d + (4.0 * n + 4.0) * e) * cmax;
-}
-
-double max_value(const RgbPlane& p) {
-  double m = 0.0;
-  for (const glm::vec3& v : p.data) m = std::max({m, double(v.r), double(v.g), double(v.b)});
-  return m;
-}
-
-// Max |a - b| over every pixel and channel (a NaN on either side: infinite, eval/frame_diff.h).
-double max_difference(const RgbPlane& a, const RgbPlane& b) {
-  const RgbErrors e = compare_rgb(a, b);
-  return std::max({e.abs.r, e.abs.g, e.abs.b});
-}
+double derived_bound(int radius, double sigma_n, double cmax) { return bilateral_bound(radius, sigma_n, cmax, 20.0); }
 
 // The pixels that pass through (no surface) differ by nothing, on every device.
 size_t uncovered_mismatches(const RgbPlane& a, const RgbPlane& b, const SurfacePlanes& s) {

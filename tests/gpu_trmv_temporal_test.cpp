@@ -82,12 +82,6 @@ double largest_input(const RgbPlane& filtered, const TrmvMotion& motion, const T
   return std::max({max_abs(filtered), max_abs(motion.reshaded), max_abs(prev.color)});
 }
 
-// Max |a - b| over every pixel and channel (a NaN on either side: infinite, eval/frame_diff.h).
-double max_difference(const RgbPlane& a, const RgbPlane& b) {
-  const RgbErrors e = compare_rgb(a, b);
-  return std::max({e.abs.r, e.abs.g, e.abs.b});
-}
-
 // Within `bound`, or bit-identical where `exact` (a CPU device: see the banner).
 void check_within_bound(const TrmvTemporalOutput& gpu, const TrmvTemporalOutput& golden, const Bounds& bound,
                         bool exact) {

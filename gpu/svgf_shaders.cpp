@@ -36,9 +36,11 @@ static_assert(kGradientAtrousTexelBindings + kGradientAtrousStorageBindings <= k
                   kGradientAtrousTexelBindings <= kTexelInputBindings,
               "A-SVGF's gradient reconstruction port fits the bindings VulkanContext chose its input kind for");
 
+}  // namespace
+
 // `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
 // storage inputs, all of them storage buffers.
-std::vector<Binding> bindings(const VulkanContext& context, uint32_t texel, uint32_t storage) {
+std::vector<Binding> port_bindings(const VulkanContext& context, uint32_t texel, uint32_t storage) {
   if (context.shader_inputs() == ShaderInputs::Storage) return std::vector<Binding>(texel + storage, Binding::Storage);
   std::vector<Binding> kinds(texel, Binding::Texel);
   kinds.insert(kinds.end(), storage, Binding::Storage);
@@ -51,8 +53,6 @@ std::vector<uint32_t> load_port(const VulkanContext& context, const std::string&
   const bool storage = context.shader_inputs() == ShaderInputs::Storage;
   return load_shader(stem + (half ? "_fp16" : "") + (storage ? "_storage" : ""));
 }
-
-}  // namespace
 
 TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
                            const SvgfParams& params) {
@@ -93,39 +93,39 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
     : group_width_(context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX),
       group_height_(context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY),
       temporal_(context, load_port(context, "temporal"),
-                bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
+                port_bindings(context, kTemporalTexelBindings, kTemporalStorageBindings), sizeof(TemporalPush),
                 specialization()),
-      variance_(context, load_port(context, "variance"), bindings(context, 5, 1), sizeof(VariancePush),
+      variance_(context, load_port(context, "variance"), port_bindings(context, 5, 1), sizeof(VariancePush),
                 specialization()),
-      atrous_5x5_(context, load_port(context, "atrous"), bindings(context, 3, 2), sizeof(AtrousPush),
+      atrous_5x5_(context, load_port(context, "atrous"), port_bindings(context, 3, 2), sizeof(AtrousPush),
                   specialization({5})),
-      atrous_3x3_(context, load_port(context, "atrous"), bindings(context, 3, 2), sizeof(AtrousPush),
+      atrous_3x3_(context, load_port(context, "atrous"), port_bindings(context, 3, 2), sizeof(AtrousPush),
                   specialization({3})),
-      modulate_(context, load_port(context, "modulate"), bindings(context, 3, 1), sizeof(ModulatePush),
+      modulate_(context, load_port(context, "modulate"), port_bindings(context, 3, 1), sizeof(ModulatePush),
                 specialization()),
-      tonemap_(context, load_port(context, "tonemap"), bindings(context, 1, 1), sizeof(TonemapPush),
+      tonemap_(context, load_port(context, "tonemap"), port_bindings(context, 1, 1), sizeof(TonemapPush),
                specialization()),
-      taa_(context, load_port(context, "taa"), bindings(context, 3, 1), sizeof(TaaPush), specialization()),
+      taa_(context, load_port(context, "taa"), port_bindings(context, 3, 1), sizeof(TaaPush), specialization()),
       trmv_temporal_(context, load_port(context, "trmv_temporal"),
-                     bindings(context, kTrmvTemporalTexelBindings, kTrmvTemporalStorageBindings),
+                     port_bindings(context, kTrmvTemporalTexelBindings, kTrmvTemporalStorageBindings),
                      sizeof(TrmvTemporalPush), specialization()),
       trmv_spatial_(context, load_port(context, "trmv_spatial"),
-                    bindings(context, kTrmvSpatialTexelBindings, kTrmvSpatialStorageBindings),
+                    port_bindings(context, kTrmvSpatialTexelBindings, kTrmvSpatialStorageBindings),
                     sizeof(TrmvSpatialPush), specialization()),
       trmv_cleanup_(context, load_port(context, "trmv_cleanup"),
-                    bindings(context, kTrmvCleanupTexelBindings, kTrmvCleanupStorageBindings),
+                    port_bindings(context, kTrmvCleanupTexelBindings, kTrmvCleanupStorageBindings),
                     sizeof(TrmvCleanupPush), specialization()),
       trmv_falloff_(context, load_port(context, "trmv_falloff"),
-                    bindings(context, kTrmvFalloffTexelBindings, kTrmvFalloffStorageBindings),
+                    port_bindings(context, kTrmvFalloffTexelBindings, kTrmvFalloffStorageBindings),
                     sizeof(TrmvFalloffPush), specialization()),
       asvgf_adaptive_alpha_(context, load_port(context, "asvgf_adaptive_alpha"),
-                            bindings(context, kAdaptiveAlphaTexelBindings, kAdaptiveAlphaStorageBindings),
+                            port_bindings(context, kAdaptiveAlphaTexelBindings, kAdaptiveAlphaStorageBindings),
                             sizeof(AdaptiveAlphaPush), specialization()),
       asvgf_gradient_image_(context, load_port(context, "asvgf_gradient_image"),
-                            bindings(context, kGradientImageTexelBindings, kGradientImageStorageBindings),
+                            port_bindings(context, kGradientImageTexelBindings, kGradientImageStorageBindings),
                             sizeof(GradientImagePush), specialization()),
       asvgf_gradient_atrous_(context, load_port(context, "asvgf_gradient_atrous"),
-                             bindings(context, kGradientAtrousTexelBindings, kGradientAtrousStorageBindings),
+                             port_bindings(context, kGradientAtrousTexelBindings, kGradientAtrousStorageBindings),
                              sizeof(GradientAtrousPush), specialization()) {}
 
 std::vector<int32_t> SvgfShaders::specialization(const std::vector<int32_t>& more) const {

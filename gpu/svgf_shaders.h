@@ -22,6 +22,7 @@
 #include "gpu/compute.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace rtdr {
@@ -82,6 +83,13 @@ struct GradientImagePlanes {
 };
 
 class SvgfShaders;
+
+// For every port's pipeline (these and the render side's, gpu/motion_*_gpu.cpp, gpu/gradient_*_gpu.cpp):
+// `texel` texel-buffer bindings followed by `storage` storage-buffer bindings, the order of every port; with
+// storage inputs, all of them storage buffers.
+std::vector<Binding> port_bindings(const VulkanContext& context, uint32_t texel, uint32_t storage);
+// The SPIR-V of `stem` built for the context's illumination records and input kind (gpu/CMakeLists.txt).
+std::vector<uint32_t> load_port(const VulkanContext& context, const std::string& stem);
 
 // The push constants of the three shaders that read SVGF's parameters, filled field by field from the golden
 // pass's SvgfParams: one function per block, which the pipeline (svgf_vulkan.cpp) and the per-pass ports

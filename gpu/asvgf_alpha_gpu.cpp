@@ -23,13 +23,15 @@ AdaptiveAlpha adaptive_alpha_vulkan(VulkanContext& context, const GradientValues
   AdaptiveAlpha out{FloatPlane(gw, gh), FloatPlane(width, height), FloatPlane(width, height)};
   if (out.lambda.data.empty() && out.alpha.data.empty()) return out;
 
-  // (delta^, Delta^) per stratum.
-  Vec2Plane gradient(gw, gh);
-  for (size_t i = 0; i < gradient.data.size(); ++i) gradient.data[i] = glm::vec2(g.delta.data[i], g.norm.data[i]);
-  const auto gradient_buffer = plane_buffer(context, gw, gh, TexelFormat::RG32F),
+  // (delta^, Delta^, l, Var) per stratum, the reconstruction's records (l and Var are not read).
+  const auto gradient_buffer = plane_buffer(context, gw, gh, TexelFormat::RGBA32F),
              alpha_buffer = plane_buffer(context, width, height, TexelFormat::RG32F),
              lambda_buffer = plane_buffer(context, gw, gh, TexelFormat::R32F);
-  pack_vec2(gradient, *gradient_buffer);
+  float* records = gradient_buffer->data();
+  for (size_t i = 0; i < g.delta.data.size(); ++i) {
+    records[4 * i + 0] = g.delta.data[i];
+    records[4 * i + 1] = g.norm.data[i];
+  }
 
   const AdaptiveAlphaPush push{.width = uint32_t(width),
                                .height = uint32_t(height),

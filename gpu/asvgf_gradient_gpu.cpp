@@ -47,7 +47,8 @@ GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& nois
   const auto values = plane_buffer(context, sw, sh, TexelFormat::RGBA32F),
              surface_out = plane_buffer(context, sw, sh, TexelFormat::RGBA32F),
              depth_grad_out = plane_buffer(context, sw, sh, TexelFormat::RG32F),
-             mesh_samples = plane_buffer(context, sw, sh, TexelFormat::RG32F);  // (id.mesh, samples): 2 words
+             mesh_out = plane_buffer(context, sw, sh, TexelFormat::R32UI),
+             samples = plane_buffer(context, sw, sh, TexelFormat::R32UI);
 
   const GradientImagePush push{.width = uint32_t(w),
                                .height = uint32_t(h),
@@ -59,19 +60,20 @@ GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& nois
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
-        shaders.gradient_image(batch, planes, *values, *surface_out, *depth_grad_out, *mesh_samples, push);
+        shaders.gradient_image(batch, planes, *values, *surface_out, *depth_grad_out, *mesh_out, *samples, push);
       },
       ms);
 
   // A stratum holds at most one gradient sample (gradient_image.h); the golden pass throws at the second.
-  const float* ids = mesh_samples->data();
+  const float* ids = mesh_out->data();
+  const float* counts = samples->data();
   for (int sy = 0; sy < sh; ++sy)
     for (int sx = 0; sx < sw; ++sx) {
       const size_t i = size_t(sy) * size_t(sw) + size_t(sx);
-      uint32_t id, samples;
-      std::memcpy(&id, ids + 2 * i, sizeof(id));
-      std::memcpy(&samples, ids + 2 * i + 1, sizeof(samples));
-      if (samples > 1)
+      uint32_t id, count;
+      std::memcpy(&id, ids + i, sizeof(id));
+      std::memcpy(&count, counts + i, sizeof(count));
+      if (count > 1)
         throw Error("stratum (" + std::to_string(sx) + ", " + std::to_string(sy) + ") holds two gradient samples");
       g.surface.mesh.data[i] = id;
     }

@@ -66,7 +66,9 @@ TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width,
                       .alpha = params.alpha,
                       .alpha_moments = params.alpha_moments,
                       .temporal_depth_relative = params.temporal_depth_relative,
-                      .temporal_normal_cosine = params.temporal_normal_cosine};
+                      .temporal_normal_cosine = params.temporal_normal_cosine,
+                      .adaptive = 0u,
+                      .restart_history = 0u};
 }
 
 VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params) {
@@ -143,11 +145,11 @@ uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(heigh
 
 void SvgfShaders::temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g,
                            const HistoryPlanes& prev, const GpuBuffer& illumination_out, Streams moments_out,
-                           const TemporalPush& push) const {
+                           Streams lambda, const TemporalPush& push) const {
   batch.dispatch(temporal_,
                  {&noisy, g.surface, g.depth_grad, g.mesh, g.motion, prev.illumination, prev.moments.direct,
                   prev.moments.indirect, prev.surface, prev.mesh, &illumination_out, moments_out.direct,
-                  moments_out.indirect},
+                  moments_out.indirect, lambda.direct, lambda.indirect},
                  &push, groups_x(push.width), groups_y(push.height), "temporal");
 }
 
@@ -185,7 +187,7 @@ void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& i
                                 const GpuBuffer& fetched_out, const GpuBuffer& clamped_out,
                                 const TrmvTemporalPush& push) const {
   batch.dispatch(trmv_temporal_,
-                 {in.filtered_alpha, in.mesh, in.motion, in.valid, in.reshaded, in.prev_color, in.prev_mesh,
+                 {in.filtered, in.mesh, in.motion, in.valid, in.reshaded, in.prev_color, in.prev_mesh, in.alpha,
                   &color_alpha_out, &fetched_out, &clamped_out},
                  &push, groups_x(push.width), groups_y(push.height), "trmv_temporal");
 }
@@ -216,17 +218,18 @@ void SvgfShaders::adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient,
   // One invocation per pixel and per stratum (adaptive_alpha_shared.h).
   batch.dispatch(asvgf_adaptive_alpha_, {&gradient, &alpha_out, &lambda_out}, &push,
                  groups_x(std::max(push.width, push.grid_width)), groups_y(std::max(push.height, push.grid_height)),
-                 "asvgf_adaptive_alpha");
+                 "adaptive_alpha");
 }
 
 void SvgfShaders::gradient_image(ComputeBatch& batch, const GradientImagePlanes& in, const GpuBuffer& values_out,
                                  const GpuBuffer& surface_out, const GpuBuffer& depth_grad_out,
-                                 const GpuBuffer& mesh_out, const GradientImagePush& push) const {
+                                 const GpuBuffer& mesh_out, const GpuBuffer& samples_out,
+                                 const GradientImagePush& push) const {
   // One invocation per stratum (gradient_image_shared.h).
   batch.dispatch(asvgf_gradient_image_,
                  {in.noisy_prev, in.source, in.surface, in.depth_grad, in.mesh, &values_out, &surface_out,
-                  &depth_grad_out, &mesh_out},
-                 &push, groups_x(push.grid_width), groups_y(push.grid_height), "asvgf_gradient_image");
+                  &depth_grad_out, &mesh_out, &samples_out},
+                 &push, groups_x(push.grid_width), groups_y(push.grid_height), "gradient");
 }
 
 void SvgfShaders::gradient_atrous(ComputeBatch& batch, const GpuBuffer& values, const GpuBuffer& surface,
@@ -234,7 +237,7 @@ void SvgfShaders::gradient_atrous(ComputeBatch& batch, const GpuBuffer& values, 
                                   const GradientAtrousPush& push) const {
   // One invocation per stratum (gradient_atrous_shared.h).
   batch.dispatch(asvgf_gradient_atrous_, {&values, &surface, &depth_grad, &mesh, &values_out}, &push,
-                 groups_x(push.grid_width), groups_y(push.grid_height), "asvgf_gradient_atrous");
+                 groups_x(push.grid_width), groups_y(push.grid_height), "gradient_atrous");
 }
 
 }  // namespace rtdr

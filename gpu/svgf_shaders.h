@@ -52,13 +52,14 @@ struct HistoryPlanes {
 // What TRMV's temporal pass reads (filters/trmv/temporal_shared.h's bindings 0-6); an optional plane that is empty
 // is one unread texel, and the push constants say so.
 struct TrmvTemporalPlanes {
-  const GpuBuffer* filtered_alpha;  // (c~_i, alpha)
+  const GpuBuffer* filtered;        // c~_i
   const GpuBuffer* mesh;            // id.mesh
   const GpuBuffer* motion;          // m
   const GpuBuffer* valid;           // the motion's validity
   const GpuBuffer* reshaded;        // (re-shaded history, its validity)
   const GpuBuffer* prev_color;      // cbar_{i-1}
   const GpuBuffer* prev_mesh;       // the previous id.mesh
+  const GpuBuffer* alpha;           // the alpha plane, (theta, alpha^V)
 };
 
 // What TRMV's falloff pass reads (filters/trmv/falloff_shared.h's bindings 0-6); an optional plane that is empty
@@ -94,7 +95,8 @@ std::vector<uint32_t> load_port(const VulkanContext& context, const std::string&
 // The push constants of the three shaders that read SVGF's parameters, filled field by field from the golden
 // pass's SvgfParams: one function per block, which the pipeline (svgf_vulkan.cpp) and the per-pass ports
 // (temporal_gpu.cpp, variance_gpu.cpp, atrous_gpu.cpp) all call. `width` x `height` is the frame, `prev_width` x
-// `prev_height` the previous frame's (0 x 0 without history).
+// `prev_height` the previous frame's (0 x 0 without history). temporal_push is SVGF's constant alpha; A-SVGF sets
+// its `adaptive` and `restart_history` after.
 TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
                            const SvgfParams& params);
 VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params);
@@ -109,9 +111,11 @@ class SvgfShaders {
  public:
   explicit SvgfShaders(VulkanContext& context);
 
-  // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments.
+  // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments. `lambda`: A-SVGF's (lambda_max,
+  // alpha_i) per pixel and stream [ASVGF18 Eq. 15], read only with push.adaptive (else any buffers, unread).
   void temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
-                const GpuBuffer& illumination_out, Streams moments_out, const TemporalPush& push) const;
+                const GpuBuffer& illumination_out, Streams moments_out, Streams lambda,
+                const TemporalPush& push) const;
   // [SVGF17 Sec. 4.2]: illumination C' and moments -> illumination (C', sigma'^2).
   void variance(ComputeBatch& batch, const GpuBuffer& illumination, Streams moments, const GBufferPlanes& g,
                 const GpuBuffer& out, const VariancePush& push) const;
@@ -126,7 +130,8 @@ class SvgfShaders {
   void tonemap(ComputeBatch& batch, const GpuBuffer& colour, const GpuBuffer& display, const TonemapPush& push) const;
   void taa(ComputeBatch& batch, const GpuBuffer& current, const GpuBuffer& history, const GpuBuffer& motion,
            const GpuBuffer& out, const TaaPush& push) const;
-  // [TRMV21 Eq. 2, Sec. 5]: c~, motion and history -> (cbar_i, alpha), the fetched and the clamped history.
+  // [TRMV21 Eq. 2, Sec. 5]: c~, motion and history -> (cbar_i, alpha), (the fetched history, alpha^V) and the
+  // clamped history.
   void trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& in, const GpuBuffer& color_alpha_out,
                      const GpuBuffer& fetched_out, const GpuBuffer& clamped_out, const TrmvTemporalPush& push) const;
   // [TRMV21 Eq. 4]: the receiver, the shadow motion and the previous positions -> (theta, alpha^V)
@@ -146,11 +151,11 @@ class SvgfShaders {
   void adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient, const GpuBuffer& alpha_out,
                       const GpuBuffer& lambda_out, const AdaptiveAlphaPush& push) const;
   // A-SVGF [ASVGF18 Eq. 3, Eq. 13, Sec. 3.4]: noisy colour, gradient samples and G-buffer -> per stratum (delta,
-  // Delta, l^(0), Var), the representative pixel's (n, z), depth gradient and (id.mesh, samples)
+  // Delta, l^(0), Var), the representative pixel's (n, z), depth gradient and id.mesh, and the samples' count
   // (filters/asvgf/gradient_image_shared.h).
   void gradient_image(ComputeBatch& batch, const GradientImagePlanes& in, const GpuBuffer& values_out,
                       const GpuBuffer& surface_out, const GpuBuffer& depth_grad_out, const GpuBuffer& mesh_out,
-                      const GradientImagePush& push) const;
+                      const GpuBuffer& samples_out, const GradientImagePush& push) const;
   // A-SVGF [ASVGF18 Eq. 7-12, Sec. 3.4]: one iteration of the gradient's reconstruction, per stratum (delta^, Delta^,
   // l^(k), Var) and the strata's (n, z), depth gradient and id.mesh -> (delta^, Delta^, l^(k+1), Var)
   // (filters/asvgf/gradient_atrous_shared.h).

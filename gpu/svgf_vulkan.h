@@ -1,11 +1,14 @@
-// SVGF, the whole pipeline, on a Vulkan device: the Method behind `rtdr filter --backend vulkan`. The same passes
-// in the same order as SvgfFilter (filters/svgf/svgf.h) with method "svgf" - temporal accumulation, variance, the
-// a-trous levels (the level `history_level` kept as next frame's colour history), remodulation, tone mapping and
-// TAA - each one dispatch of the ports in filters/svgf/*.comp and filters/taa/taa.comp, both streams at once.
+// SVGF and A-SVGF, the whole pipeline, on a Vulkan device: the Method behind `rtdr filter --backend vulkan
+// --method svgf|asvgf`. The same passes in the same order as SvgfFilter (filters/svgf/svgf.h) with method "svgf" or
+// "asvgf" - for asvgf first, per stream, the gradient image, its reconstruction's iterations and lambda and alpha_i
+// (filters/asvgf/*.comp) [ASVGF18 Sec. 3.4, 3.5]; then temporal accumulation (with asvgf's alpha_i per pixel),
+// variance, the a-trous levels (the level `history_level` kept as next frame's colour history), remodulation, tone
+// mapping and TAA - each one dispatch of the ports in filters/svgf/*.comp and filters/taa/taa.comp, both streams
+// at once.
 //
 // Every history stays on the device between frames (colour history, moments, the previous G-buffer, the TAA
-// history): per frame the host uploads the input frame's planes, runs one batch of 5 + atrous_levels dispatches
-// and two copies, and reads back the colour and the display colour. Buffers are made for the first frame's size; a
+// history): per frame the host uploads the input frame's planes, runs one batch of dispatches (5 + atrous_levels,
+// and 2 (2 + gradient_levels) more for asvgf) and two copies, and reads back the colour and the display colour. Buffers are made for the first frame's size; a
 // later frame of another size throws, as SvgfFilter does.
 //
 // pass_times(): each pass's device time (timestamps), summed over its dispatches and streams, plus "transfer": the
@@ -30,7 +33,8 @@ namespace rtdr {
 
 class SvgfVulkan : public Method {
  public:
-  // `options` must be the "svgf" configuration's stages (temporal, a-trous, TAA); its parameters may be any.
+  // `options` must be the "svgf" or "asvgf" configuration's stages (temporal, a-trous, TAA, with or without the
+  // adaptive alpha); its parameters may be any.
   SvgfVulkan(VulkanContext& context, const SvgfOptions& options);
   ~SvgfVulkan() override;
   std::string name() const override { return options_.name; }
@@ -47,13 +51,18 @@ class SvgfVulkan : public Method {
   void set_submits(int submits) { submits_ = submits; }
 
  private:
-  struct Buffers;  // every device plane, made for one frame size
-  class Dump;      // the copies behind filter()'s dump, and their readback buffers
+  struct Buffers;          // every device plane, made for one frame size
+  struct GradientBuffers;  // A-SVGF's planes, for one frame size and stratum size
+  class Dump;              // the copies behind filter()'s dump, and their readback buffers
+  // A-SVGF's passes for both streams, recorded into batch_: the gradient image, its reconstruction, lambda and
+  // alpha_i [ASVGF18 Sec. 3.4, 3.5], with their dump copies when d is given.
+  void adaptive_alpha(Dump* d);
   VulkanContext& context_;
   SvgfOptions options_;
   SvgfShaders shaders_;
   ComputeBatch batch_;
   std::unique_ptr<Buffers> buffers_;
+  std::unique_ptr<GradientBuffers> gradients_;
   std::unique_ptr<Dump> dump_;
   int frames_ = 0;  // frames since the last reset: 0 means no history
   int submits_ = 1;

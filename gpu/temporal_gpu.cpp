@@ -24,7 +24,8 @@ bool surface_sized(const SurfacePlanes& s, int w, int h) {
 }  // namespace
 
 TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, const SurfacePlanes& cur,
-                               const TemporalHistory& prev, const SvgfParams& params, double* ms) {
+                               const TemporalHistory& prev, const SvgfParams& params, double* ms,
+                               const TemporalAdaptive* adaptive) {
   // The size checks of temporal_pass (temporal.cpp's check_sizes).
   const int w = noisy.width, h = noisy.height;
   if (!surface_sized(cur, w, h) || !sized(cur.motion, w, h))
@@ -36,6 +37,8 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                       !surface_sized(prev.surface, pw, ph)))
     throw Error("temporal_vulkan: the history planes are not all " + std::to_string(pw) + "x" + std::to_string(ph) +
                 " like the history colour");
+  if (adaptive && !sized(*adaptive->lambda, w, h))
+    throw Error("temporal pass: the lambda plane is not the frame's size");
   if (params.max_history < 0)
     throw Error("temporal_vulkan: max_history must be >= 0, got " + std::to_string(params.max_history));
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
@@ -68,7 +71,14 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F),
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F)};
 
-  const TemporalPush push = temporal_push(uint32_t(w), uint32_t(h), uint32_t(hw), uint32_t(hh), params);
+  // A-SVGF's (lambda_max, alpha_i) records; the shader reads lambda_max (x) alone. Without adaptive: one unread one.
+  const auto lambda = plane_buffer(context, adaptive ? w : 1, adaptive ? h : 1, TexelFormat::RG32F);
+  if (adaptive)
+    for (size_t i = 0; i < adaptive->lambda->data.size(); ++i) lambda->data()[2 * i] = adaptive->lambda->data[i];
+
+  TemporalPush push = temporal_push(uint32_t(w), uint32_t(h), uint32_t(hw), uint32_t(hh), params);
+  push.adaptive = adaptive ? 1u : 0u;
+  push.restart_history = adaptive && adaptive->restart_history ? 1u : 0u;
   // Both streams hold the same values; the indirect stream's outputs are not read back.
   run_pass(
       context,
@@ -76,7 +86,7 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
         shaders.temporal(batch, *noisy_buffer, {surface.get(), grad.get(), mesh.get(), motion.get()},
                          {prev_color.get(), {prev_moments.get(), prev_moments.get()}, prev_surface.get(),
                           prev_mesh.get()},
-                         *outputs[0], {outputs[1].get(), outputs[2].get()}, push);
+                         *outputs[0], {outputs[1].get(), outputs[2].get()}, {lambda.get(), lambda.get()}, push);
       },
       ms);
 

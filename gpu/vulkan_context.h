@@ -43,8 +43,8 @@ struct VulkanOptions {
   IlluminationRecords illumination = IlluminationRecords::Auto;
 };
 
-// The most storage buffers a port binds with storage inputs: the temporal pass's 13 planes (temporal_shared.h).
-inline constexpr uint32_t kStorageInputBindings = 13;
+// The most storage buffers a port binds with storage inputs: the temporal pass's 15 planes (temporal_shared.h).
+inline constexpr uint32_t kStorageInputBindings = 15;
 // The most storage texel buffers a port binds with texel inputs: the temporal pass's 10 input planes.
 inline constexpr uint32_t kTexelInputBindings = 10;
 

@@ -12,6 +12,10 @@
 // fp16 illumination records (the ports' _fp16 builds): the noisy colour and the history colour are read as the
 // records hold them, so the golden pass runs on those (golden_temporal); the moments are fp32 and match as above.
 // The colour C' is then stored as a half: the bound grows by that rounding, 2^-10 relative (gpu_fixtures.h).
+//
+// A-SVGF's per-pixel alpha (TemporalAdaptive, the `adaptive` push constant) adds (1 - lambda) alpha + lambda
+// [ASVGF18 Eq. 15] and, with restart_history, n_{i-1} (1 - lambda): products and sums without a division, the same
+// fp32 operations on both sides, so the bound above holds unchanged and n stays exact.
 #include "gpu/temporal_gpu.h"
 
 #include "core/error.h"
@@ -47,9 +51,10 @@ double scaled_diff(float gpu, float golden) { return rel_difference(gpu, golden,
 
 // temporal_pass on what the context's port reads: the noisy and history colours as its records hold them.
 TemporalOutput golden_temporal(const VulkanContext& context, const RgbPlane& noisy, const SurfacePlanes& cur,
-                               TemporalHistory prev, const SvgfParams& params) {
+                               TemporalHistory prev, const SvgfParams& params,
+                               const TemporalAdaptive* adaptive = nullptr) {
   prev.color = stored_colour(context, prev.color);
-  return temporal_pass(stored_colour(context, noisy), cur, prev, params);
+  return temporal_pass(stored_colour(context, noisy), cur, prev, params, adaptive);
 }
 
 void check_within_bound(const VulkanContext& context, const TemporalOutput& gpu, const TemporalOutput& golden) {
@@ -159,6 +164,42 @@ TEST_CASE("the temporal port matches temporal_pass on random planes of an odd si
   const TemporalHistory other = random_history(rng2, random_surface(rng2, 37, 31));
   check_within_bound(*context, temporal_vulkan(*context, noisy, cur, other, SvgfParams{}),
                      golden_temporal(*context, noisy, cur, other, SvgfParams{}));
+  check_no_validation_messages(*context);
+}
+
+TEST_CASE("the temporal port matches temporal_pass with A-SVGF's per-pixel lambda, under both history rules") {
+  const auto context = validated_context();
+  std::mt19937 rng(31);
+  const int w = 37, h = 23;
+  const SurfacePlanes cur = random_surface(rng, w, h);
+  const TemporalHistory prev = random_history(rng, cur);
+  const RgbPlane noisy = random_plane(rng, w, h, 0.0f, 10.0f);
+  // lambda: 0 (history kept), 1 (dropped) and values between, as adaptive_alpha_pass makes them.
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  FloatPlane lambda(w, h);
+  for (float& l : lambda.data) {
+    const float r = u(rng);
+    l = r < 0.3f ? 0.0f : r < 0.5f ? 1.0f : u(rng);
+  }
+  SvgfParams params;
+  params.alpha = 0.1f;
+  params.alpha_moments = 0.1f;
+  for (const bool restart : {true, false}) {
+    INFO("restart_history " << restart);
+    const TemporalAdaptive adaptive{&lambda, restart};
+    const TemporalOutput golden = golden_temporal(*context, noisy, cur, prev, params, &adaptive);
+    const TemporalOutput gpu = temporal_vulkan(*context, noisy, cur, prev, params, nullptr, &adaptive);
+    check_within_bound(*context, gpu, golden);
+    // The adaptive weight changed the result: the same frame with SVGF's constant alpha differs.
+    const TemporalOutput constant = golden_temporal(*context, noisy, cur, prev, params);
+    double moved = 0.0;
+    for (size_t i = 0; i < golden.moment1.data.size(); ++i)
+      moved = std::max(moved, double(std::abs(golden.moment1.data[i] - constant.moment1.data[i])));
+    CHECK(moved > 0.1);
+  }
+  const FloatPlane wrong_size(w - 1, h);
+  const TemporalAdaptive misfit{&wrong_size, true};
+  CHECK_THROWS_AS(temporal_vulkan(*context, noisy, cur, prev, params, nullptr, &misfit), Error);
   check_no_validation_messages(*context);
 }
 

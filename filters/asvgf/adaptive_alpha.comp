@@ -4,7 +4,7 @@
 // [ASVGF18 Sec. 3.5], strata outside the grid skipped, and alpha_i = (1 - lambda_max) alpha + lambda_max
 // [ASVGF18 Eq. 15]. One invocation per pixel (and per stratum: adaptive_alpha_shared.h).
 // The choices the paper leaves open are the golden pass's (filters/asvgf/adaptive_alpha.h).
-//   in:  binding 0 (delta^, Delta^) per stratum; out: 1 (lambda_max, alpha_i) per pixel, 2 lambda per stratum.
+//   in:  binding 0 (delta^, Delta^, l, Var) per stratum; out: 1 (lambda_max, alpha_i) per pixel, 2 lambda per stratum.
 //   Layout: filters/asvgf/adaptive_alpha_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order (tests/gpu_adaptive_alpha_test.cpp derives the bound).
@@ -17,7 +17,7 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RG(0, gradient)
+RTDR_INPUT_RGBA(0, gradient)
 layout(std430, set = 0, binding = 1) writeonly buffer OutAlpha { vec2 out_alpha[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer OutLambda { float out_lambda[]; };
 

@@ -4,8 +4,9 @@
 // this file; GLSL has the C preprocessor, and core/shader_shared.h maps the types.
 //
 // Bindings (row-major planes):
-//   0 (delta^, Delta^)      RG32F, the stratum grid's size (grid_width x grid_height): the reconstructed gradient
-//                           and its normalisation (gradient_atrous.h, last iteration)
+//   0 (delta^, Delta^, l, Var)  RGBA32F, the stratum grid's size (grid_width x grid_height): the reconstructed
+//                           gradient and its normalisation (gradient_atrous.h, last iteration), as the
+//                           reconstruction's port writes its values (gradient_atrous_shared.h); l and Var unread
 //   1 (lambda_max, alpha_i) written, std430 array of vec2, the frame's size (width x height)
 //   2 lambda                written, std430 array of float, the stratum grid's size
 #ifndef RTDR_FILTERS_ASVGF_ADAPTIVE_ALPHA_SHARED_H

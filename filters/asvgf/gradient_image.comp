@@ -5,7 +5,7 @@
 // variance [ASVGF18 Sec. 3.4], and the geometry of the representative pixel. One invocation per stratum.
 // The choices the paper leaves open are the golden pass's (filters/asvgf/gradient_image.h).
 //   in:  bindings 0 (C_i, f_{i-1}), 1 gradient.source, 2 surface, 3 depth gradient, 4 id.mesh;
-//   out: 5 (delta, Delta, l^(0), Var), 6 (n, z), 7 depth gradient, 8 (id.mesh, samples) per stratum.
+//   out: 5 (delta, Delta, l^(0), Var), 6 (n, z), 7 depth gradient, 8 id.mesh, 9 samples per stratum.
 //   Layout: filters/asvgf/gradient_image_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order (tests/gpu_gradient_image_test.cpp derives the bound).
@@ -27,7 +27,8 @@ RTDR_INPUT_UINT(4, mesh)
 layout(std430, set = 0, binding = 5) writeonly buffer OutValues { vec4 out_values[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer OutSurface { vec4 out_surface[]; };
 layout(std430, set = 0, binding = 7) writeonly buffer OutDepthGrad { vec2 out_depth_grad[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer OutMesh { uvec2 out_mesh[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer OutMesh { uint out_mesh[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer OutSamples { uint out_samples[]; };
 
 layout(push_constant) uniform Push { GradientImagePush push; };
 
@@ -103,5 +104,6 @@ void main() {
   const int ri = has_representative ? pixel_index(r.representative.x, r.representative.y) : 0;
   out_surface[i] = has_representative ? surface(ri) : vec4(0.0);
   out_depth_grad[i] = has_representative ? depth_grad(ri).xy : vec2(0.0);
-  out_mesh[i] = uvec2(has_representative ? mesh(ri).x : RTDR_INVALID_ID, uint(r.samples));
+  out_mesh[i] = has_representative ? mesh(ri).x : RTDR_INVALID_ID;
+  out_samples[i] = uint(r.samples);
 }

@@ -6,6 +6,7 @@
 #include "core/parallel.h"
 
 #include <algorithm>
+#include <charconv>
 #include <string>
 
 namespace rtdr {
@@ -94,6 +95,19 @@ GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, con
     }
   });
   return g;
+}
+
+int frame_stratum_size(const Frame& frame, const std::string& method) {
+  const auto it = frame.attributes.find("rtdr.gradient.stratum_size");
+  if (it == frame.attributes.end())
+    throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
+                " needs frames rendered with gradient samples (rtdr render --gradients): no rtdr.gradient.stratum_size");
+  int s = 0;
+  const char *first = it->second.data(), *last = first + it->second.size();
+  const auto [end, ec] = std::from_chars(first, last, s);
+  if (ec != std::errc() || end != last || s < 1 || s > 64)
+    throw Error(frame.source + ": rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)");
+  return s;
 }
 
 FloatPlane replicate_strata(const FloatPlane& strata, int s, int width, int height) {

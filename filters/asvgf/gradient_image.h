@@ -22,9 +22,12 @@
 //   malformed frame and throws.
 #pragma once
 
+#include "core/frame.h"
 #include "filters/image.h"
 #include "filters/probe.h"
 #include "filters/surface_planes.h"
+
+#include <string>
 
 namespace rtdr {
 
@@ -56,6 +59,11 @@ GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source,
 // or s < 1.
 GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
                              const SurfacePlanes& surface, int s);
+
+// The stratum size s the frame's gradient samples were made with, from the render's header
+// (rtdr.gradient.stratum_size, trace/gradients.h) [ASVGF18 Sec. 3.3]. Throws rtdr::Error naming the frame and
+// `method` when it is missing or not a stratum size (1 to 64).
+int frame_stratum_size(const Frame& frame, const std::string& method);
 
 // A per-stratum plane replicated to the frame's pixels (pixel (x, y) takes stratum (x / s, y / s)), so that
 // dumps stay frame-sized layers.

@@ -14,9 +14,10 @@
 //   5 (delta, Delta, l^(0), Var(l^(0)))  vec4
 //   6 (n.x, n.y, n.z, z)                 vec4, the representative pixel's (0 where there is none)
 //   7 depth gradient                     vec2, likewise
-//   8 (id.mesh, gradient samples)        uvec2: the representative pixel's mesh id (kInvalidId where there is
-//                                        none), and how many samples the stratum holds (more than 1: the host throws,
-//                                        as the golden pass does)
+//   8 id.mesh                            uint: the representative pixel's mesh id (kInvalidId where there is
+//                                        none), as the reconstruction reads it (gradient_atrous_shared.h, binding 3)
+//   9 gradient samples                   uint: how many samples the stratum holds (more than 1: the per-pass port
+//                                        throws, as the golden pass does)
 #ifndef RTDR_FILTERS_ASVGF_GRADIENT_IMAGE_SHARED_H
 #define RTDR_FILTERS_ASVGF_GRADIENT_IMAGE_SHARED_H
 
@@ -34,7 +35,7 @@ namespace rtdr {
 // inputs: core/shader_shared.h) and 4 storage buffers. gpu/svgf_shaders.cpp checks that both fit the limits the
 // context was chosen for (gpu/vulkan_context.h).
 RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientImageTexelBindings = 5;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientImageStorageBindings = 4;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientImageStorageBindings = 5;
 
 // The push-constant block: the frame's size, the stratum grid's (ceil(width / s) x ceil(height / s)) and s.
 // One invocation per stratum.

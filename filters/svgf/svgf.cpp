@@ -8,7 +8,6 @@
 #include "filters/svgf/variance.h"
 
 #include <algorithm>
-#include <charconv>
 
 namespace rtdr {
 
@@ -176,14 +175,7 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
                 std::to_string(history.height) + ")");
   if (options_.adaptive) {
     // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
-    const auto it = in.attributes.find("rtdr.gradient.stratum_size");
-    if (it == in.attributes.end())
-      throw Error((in.source.empty() ? std::string("the input frame") : in.source) + ": method " + options_.name +
-                  " needs frames rendered with gradient samples (rtdr render --gradients): no rtdr.gradient.stratum_size");
-    const char *first = it->second.data(), *last = first + it->second.size();
-    const auto [end, ec] = std::from_chars(first, last, stratum_size_);
-    if (ec != std::errc() || end != last || stratum_size_ < 1 || stratum_size_ > 64)
-      throw Error(in.source + ": rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)");
+    stratum_size_ = frame_stratum_size(in, options_.name);
     gradient_source_ = in.uint_channel("gradient.source");
     direct_.prev_luminance = in.float_channel("gradient.prev_direct");
     indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");

@@ -6,6 +6,9 @@
 //   in:  bindings 0 noisy illumination (both streams); 1-4 current surface, depth gradient, mesh id, motion;
 //        5 history illumination (both streams), 6-7 history moments (direct, indirect); 8-9 previous surface, mesh id.
 //   out: bindings 10 illumination (C', 0) (both streams), 11-12 moments (mu1', mu2', n, 0) (direct, indirect).
+//   A-SVGF (push.adaptive): bindings 13-14 (lambda_max, alpha_i) per pixel of the direct and the indirect stream
+//   (filters/asvgf/adaptive_alpha.comp); alpha and alpha_mu become (1 - lambda) alpha + lambda [ASVGF18 Eq. 15],
+//   and with push.restart_history the history length falls to (1 - lambda) n_{i-1} [ASVGF18 Sec. 4].
 //   Layout: planes_shared.h and temporal_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -31,6 +34,8 @@ RTDR_INPUT_UINT(9, prev_mesh)
 RTDR_OUTPUT_ILLUMINATION(10, out_illumination)
 layout(std430, set = 0, binding = 11) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
 layout(std430, set = 0, binding = 12) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
+layout(std430, set = 0, binding = 13) readonly buffer LambdaDirect { vec2 lambda_direct[]; };
+layout(std430, set = 0, binding = 14) readonly buffer LambdaIndirect { vec2 lambda_indirect[]; };
 
 layout(push_constant) uniform Push { TemporalPush push; };
 
@@ -189,14 +194,22 @@ TemporalPixel disocclusion(vec3 C, float l) {
   return TemporalPixel(C, l, l2, 1.0);
 }
 
+// alpha_i(p) = (1 - lambda(p)) alpha + lambda(p) [ASVGF18 Eq. 15] (filters/asvgf/adaptive_alpha.cpp); lambda = 0
+// gives alpha exactly, SVGF's constant weight.
+float adaptive_alpha(float alpha, float lambda) {
+  precise float alpha_i = (1.0 - lambda) * alpha + lambda;
+  return alpha_i;
+}
+
 // The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp.
-TemporalPixel accumulate(vec3 C, float l, HistorySample h) {
+// With A-SVGF's lambda, alpha and alpha_mu become alpha_i of [ASVGF18 Eq. 15] first.
+TemporalPixel accumulate(vec3 C, float l, HistorySample h, float lambda) {
   // n_i = n_{i-1} + 1, capped at n_max when the table sets one (max_history > 0).
   precise float n = h.len + 1.0;
   if (frame.max_history > 0u) n = min(n, float(frame.max_history));
   // alpha_eff = max(alpha, 1/n): a running mean while 1/n > alpha, then the paper's EMA (a deviation, temporal.h).
-  const float alpha = max(frame.alpha, 1.0 / n);
-  const float alpha_mu = max(frame.alpha_moments, 1.0 / n);
+  const float alpha = max(adaptive_alpha(frame.alpha, lambda), 1.0 / n);
+  const float alpha_mu = max(adaptive_alpha(frame.alpha_moments, lambda), 1.0 / n);
   // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation]
   precise vec3 color = alpha * C + (1.0 - alpha) * h.color;
   // mu1'_i = alpha_mu l + (1 - alpha_mu) mu1'_{i-1}  [SVGF17 Sec. 4.2, accumulated like the colour]
@@ -206,15 +219,21 @@ TemporalPixel accumulate(vec3 C, float l, HistorySample h) {
   return TemporalPixel(color, moment1, moment2, n);
 }
 
-// One stream's result from its noisy colour C and its back-projected history (found: not a disocclusion).
-TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h) {
+// One stream's result from its noisy colour C and its back-projected history (found: not a disocclusion), with
+// A-SVGF's lambda (0 for SVGF).
+TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h, float lambda) {
   // l: the luminance of the noisy colour; l and l^2 are its first two raw moments [SVGF17 Sec. 4.2].
   const float l = luminance(C);
   if (!found) return disocclusion(C, l);
   // n_{i-1}: the weighted mean of the taps' n rounded to whole frames, floor(x + 0.5) (temporal.cpp says why).
   precise float rounded = floor(h.len + 0.5);
   h.len = rounded;
-  return accumulate(C, l, h);
+  // A-SVGF: a dropped history restarts, n_{i-1} <- (1 - lambda) n_{i-1} [ASVGF18 Sec. 4] (temporal.h).
+  if (frame.restart_history != 0u) {
+    precise float restarted = h.len * (1.0 - lambda);
+    h.len = restarted;
+  }
+  return accumulate(C, l, h, lambda);
 }
 
 void write(int i, TemporalPixel direct, TemporalPixel indirect) {
@@ -240,5 +259,9 @@ void main() {
   Histories h;
   const bool found = backproject_history(pixel.x, pixel.y, c, h);
   const Illumination C = noisy(i);
-  write(i, temporal_stream(C.stream[0].rgb, found, h.stream[0]), temporal_stream(C.stream[1].rgb, found, h.stream[1]));
+  // lambda_max per stream [ASVGF18 Sec. 3.5], or 0: SVGF's constant alpha.
+  const bool adaptive = frame.adaptive != 0u;
+  const float lambda_d = adaptive ? lambda_direct[i].x : 0.0, lambda_i = adaptive ? lambda_indirect[i].x : 0.0;
+  write(i, temporal_stream(C.stream[0].rgb, found, h.stream[0], lambda_d),
+        temporal_stream(C.stream[1].rgb, found, h.stream[1], lambda_i));
 }

@@ -44,7 +44,8 @@ TrmvTemporalOutput trmv_temporal_vulkan(VulkanContext& context, const RgbPlane& 
   const bool has_history = prev.color.width != 0, has_valid = motion.valid.width != 0,
              has_reshaded = motion.reshaded.width != 0, has_alpha = alpha.width != 0;
   const int pw = has_history ? prev.color.width : 0, ph = has_history ? prev.color.height : 0;
-  const auto filtered_alpha = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+  const auto filtered_buffer = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             alpha_buffer = plane_buffer(context, alpha.width, alpha.height, TexelFormat::RG32F),
              mesh_buffer = plane_buffer(context, w, h, TexelFormat::R32UI),
              motion_buffer = plane_buffer(context, w, h, TexelFormat::RG32F),
              valid_buffer = plane_buffer(context, motion.valid.width, motion.valid.height, TexelFormat::R32UI),
@@ -52,10 +53,10 @@ TrmvTemporalOutput trmv_temporal_vulkan(VulkanContext& context, const RgbPlane& 
                                             TexelFormat::RGBA32F),
              prev_color = plane_buffer(context, pw, ph, TexelFormat::RGBA32F),
              prev_mesh = plane_buffer(context, pw, ph, TexelFormat::R32UI);
-  // (c~_i, alpha): the alpha plane's value in w where there is one.
-  pack_rgb(filtered, *filtered_alpha);
+  pack_rgb(filtered, *filtered_buffer);
+  // The alpha plane as the falloff port writes it, (theta, alpha^V); theta is not read.
   if (has_alpha)
-    for (size_t i = 0; i < alpha.data.size(); ++i) set_w(*filtered_alpha, i, alpha.data[i]);
+    for (size_t i = 0; i < alpha.data.size(); ++i) alpha_buffer->data()[2 * i + 1] = alpha.data[i];
   pack_ids(mesh, *mesh_buffer);
   pack_vec2(motion.motion, *motion_buffer);
   if (has_valid) pack_ids(motion.valid, *valid_buffer);
@@ -85,8 +86,9 @@ TrmvTemporalOutput trmv_temporal_vulkan(VulkanContext& context, const RgbPlane& 
                               .alpha = params.alpha,
                               .clamp_gamma = params.clamp_gamma,
                               .clamp_radius = params.clamp_radius};
-  const TrmvTemporalPlanes planes{filtered_alpha.get(), mesh_buffer.get(), motion_buffer.get(), valid_buffer.get(),
-                                  reshaded_buffer.get(),  prev_color.get(),  prev_mesh.get()};
+  const TrmvTemporalPlanes planes{filtered_buffer.get(), mesh_buffer.get(), motion_buffer.get(),
+                                  valid_buffer.get(),    reshaded_buffer.get(), prev_color.get(),
+                                  prev_mesh.get(),       alpha_buffer.get()};
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {

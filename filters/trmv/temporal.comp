@@ -4,8 +4,9 @@
 // take the re-shaded one; clamp it per channel to mu +- gamma sigma of c~ over the (2r+1)^2 window; blend
 // cbar_i = alpha c~_i + (1 - alpha) cbar*_{i-1}. No history: alpha = 1, cbar_i = c~_i. One invocation per pixel.
 // The choices the paper leaves open are the golden pass's (filters/trmv/temporal.h).
-//   in:  bindings 0 (c~_i, alpha), 1 id.mesh, 2 motion, 3 validity, 4 re-shaded history, 5 cbar_{i-1},
-//        6 the previous id.mesh; out: 7 (cbar_i, alpha), 8 the fetched and 9 the clamped history.
+//   in:  bindings 0 c~_i, 1 id.mesh, 2 motion, 3 validity, 4 re-shaded history, 5 cbar_{i-1}, 6 the previous
+//        id.mesh, 7 the alpha plane (theta, alpha^V); out: 8 (cbar_i, alpha), 9 (the fetched history, the alpha
+//        plane's value) and 10 the clamped history.
 //   Layout: filters/svgf/planes_shared.h and filters/trmv/temporal_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order (tests/gpu_trmv_temporal_test.cpp derives the bound).
@@ -19,16 +20,17 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, filtered_alpha)
+RTDR_INPUT_RGBA(0, filtered)
 RTDR_INPUT_UINT(1, mesh)
 RTDR_INPUT_RG(2, motion)
 RTDR_INPUT_UINT(3, motion_valid)
 RTDR_INPUT_RGBA(4, reshaded)
 RTDR_INPUT_RGBA(5, prev_color)
 RTDR_INPUT_UINT(6, prev_mesh)
-layout(std430, set = 0, binding = 7) writeonly buffer OutColor { vec4 out_color[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer OutFetched { vec4 out_fetched[]; };
-layout(std430, set = 0, binding = 9) writeonly buffer OutClamped { vec4 out_clamped[]; };
+RTDR_INPUT_RG(7, falloff)
+layout(std430, set = 0, binding = 8) writeonly buffer OutColor { vec4 out_color[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer OutFetched { vec4 out_fetched[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer OutClamped { vec4 out_clamped[]; };
 
 layout(push_constant) uniform Push { TrmvTemporalPush push; };
 
@@ -98,7 +100,7 @@ vec3 trmv_clamp_history(vec3 history, float gamma, int radius, int x, int y) {
     for (int dx = -radius; dx <= radius; ++dx) {
       const int qx = x + dx, qy = y + dy;
       if (!cur_inside(qx, qy) || mesh(cur_index(qx, qy)).x == RTDR_INVALID_ID) continue;
-      const vec3 c = filtered_alpha(cur_index(qx, qy)).rgb;
+      const vec3 c = filtered(cur_index(qx, qy)).rgb;
       sum += c;
       sum_sq += c * c;
       ++n;
@@ -111,11 +113,13 @@ vec3 trmv_clamp_history(vec3 history, float gamma, int radius, int x, int y) {
   return clamped;
 }
 
+// The alpha plane's value at pixel i: alpha^V [TRMV21 Eq. 4] where there is a plane, else the constant alpha.
+float alpha_plane(int i) { return frame.has_alpha == 0u ? frame.alpha : falloff(i).y; }
+
 // The golden per-pixel function, trmv_temporal_pixel.
 TrmvTemporalPixel trmv_temporal_pixel(int x, int y) {
   const int i = cur_index(x, y);
-  const vec4 c_alpha = filtered_alpha(i);
-  const vec3 c = c_alpha.rgb;  // c~_i [TRMV21 Eq. 2], spatially filtered
+  const vec3 c = filtered(i).rgb;  // c~_i [TRMV21 Eq. 2], spatially filtered
   const bool covered = mesh(i).x != RTDR_INVALID_ID;
   const bool first_frame = frame.has_history == 0u;
   const bool valid = frame.has_valid == 0u || motion_valid(i).x != 0u;
@@ -130,7 +134,7 @@ TrmvTemporalPixel trmv_temporal_pixel(int x, int y) {
     if (!trmv_fetch_history(p_prev, result.fetched)) return without_history(c);
   }
   result.clamped = trmv_clamp_history(result.fetched, frame.clamp_gamma, frame.clamp_radius, x, y);
-  result.alpha = frame.has_alpha == 0u ? frame.alpha : c_alpha.w;
+  result.alpha = alpha_plane(i);
   // cbar_i(x_i) = alpha c~_i(x_i) + (1 - alpha) cbar*_{i-1}(x_{i-1})  [TRMV21 Eq. 2], the history clamped.
   precise vec3 color = result.alpha * c + (1.0 - result.alpha) * result.clamped;
   result.color = color;
@@ -146,6 +150,6 @@ void main() {
   const TrmvTemporalPixel p = trmv_temporal_pixel(pixel.x, pixel.y);
   const int i = cur_index(pixel.x, pixel.y);
   out_color[i] = vec4(p.color, p.alpha);
-  out_fetched[i] = vec4(p.fetched, 0.0);
+  out_fetched[i] = vec4(p.fetched, alpha_plane(i));  // what the clean-up reads as alpha^V
   out_clamped[i] = vec4(p.clamped, 0.0);
 }

@@ -6,14 +6,18 @@
 //
 // Bindings (colour records (r, g, b, w), row-major: filters/svgf/planes_shared.h). Each optional plane of the golden
 // pass travels as one unread texel when it is empty, and a push-constant flag says so:
-//   0 (c~_i, alpha)  RGBA32F: the spatially filtered colour; w the alpha plane's value (has_alpha), else 0
+//   0 c~_i           RGBA32F: the spatially filtered colour (w unread: the spatial port's std)
 //   1 id.mesh        R32UI, current frame
 //   2 motion m       RG32F (pixels), TrmvMotion::motion
 //   3 valid          R32UI, TrmvMotion::valid (has_valid)
 //   4 re-shaded      RGBA32F (r, g, b, 1 where TrmvMotion::reshaded_valid, else 0) (has_reshaded)
 //   5 cbar_{i-1}     RGBA32F, prev_width x prev_height (has_history)
 //   6 id.mesh        R32UI, the previous frame's, prev_width x prev_height
-//   7 (cbar_i, alpha), 8 (cbar_{i-1}(x_{i-1}), 0), 9 (cbar*_{i-1}, 0): written, std430 arrays of vec4
+//   7 the alpha plane RG32F (theta, alpha^V), as the falloff port writes it (falloff_shared.h): y is read
+//                    (has_alpha)
+//   8 (cbar_i, alpha), 9 (cbar_{i-1}(x_{i-1}), a), 10 (cbar*_{i-1}, 0): written, std430 arrays of vec4, where a
+//                    is the pixel's alpha-plane value (alpha^V), or TrmvParams::alpha without one: what the clean-up
+//                    reads as alpha^V (cleanup_shared.h, binding 1), so that the ports chain on the device
 #ifndef RTDR_FILTERS_TRMV_TEMPORAL_SHARED_H
 #define RTDR_FILTERS_TRMV_TEMPORAL_SHARED_H
 
@@ -27,10 +31,10 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..9 above): 7 inputs (storage texel buffers, or storage buffers when built for storage
+// The number of bindings (0..10 above): 8 inputs (storage texel buffers, or storage buffers when built for storage
 // inputs: core/shader_shared.h) and 3 storage buffers. gpu/svgf_shaders.cpp checks that both fit the limits the
 // context was chosen for (gpu/vulkan_context.h).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvTemporalTexelBindings = 7;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvTemporalTexelBindings = 8;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvTemporalStorageBindings = 3;
 
 // The push-constant block: the current and the previous frame's sizes, which optional planes are given, and the

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "filters/svgf/svgf.h"
 #include "gpu/svgf_vulkan.h"
+#include "gpu/trmv_vulkan.h"
 
 #include <sstream>
 
@@ -14,18 +15,23 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
   if (backend == "cpu") {
     m.method = make_method(method, params);
   } else if (backend == "vulkan") {
-    const SvgfOptions options = method_options(method, params);  // checks the method's name first
     m.context = std::make_unique<VulkanContext>();
-    m.method = std::make_unique<SvgfVulkan>(*m.context, options);
+    m.method = make_vulkan_method(*m.context, method, params);
   } else {
     throw Error("--backend '" + backend + "' is not one of: cpu, vulkan");
   }
   return m;
 }
 
+std::unique_ptr<Method> make_vulkan_method(VulkanContext& context, const std::string& method,
+                                           const MethodParams& params) {
+  if (method == "trmv") return std::make_unique<TrmvVulkan>(context, params);
+  return std::make_unique<SvgfVulkan>(context, method_options(method, params));  // checks the method's name first
+}
+
 std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
   if (spec.backend == "cpu") return make_method(spec.name, spec_params(spec));
-  const SvgfOptions options = method_options(spec.name, spec_params(spec));  // checks the method's name first
+  if (spec.name != "trmv") method_options(spec.name, spec_params(spec));  // checks the method's name first
   std::unique_ptr<VulkanContext>& context = contexts_[spec.illumination];
   if (!context) {
     VulkanOptions vulkan;  // "" leaves the records Auto
@@ -33,7 +39,7 @@ std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
       if (spec.illumination == illumination_records_name(records)) vulkan.illumination = records;
     context = std::make_unique<VulkanContext>(vulkan);
   }
-  return std::make_unique<SvgfVulkan>(*context, options);
+  return make_vulkan_method(*context, spec.name, spec_params(spec));
 }
 
 Frame filter_with_dump(Method& method, const Frame& in) {

@@ -1,5 +1,5 @@
-// Where a method runs: `--backend cpu` (the golden passes, filters/) or `--backend vulkan` (the shader ports,
-// gpu/svgf_vulkan.h; svgf only). rtdr filter, compare and bench choose through here, and rtdr eval through
+// Where a method runs: `--backend cpu` (the golden passes, filters/) or `--backend vulkan` (the shader ports:
+// gpu/svgf_vulkan.h for svgf and asvgf, gpu/trmv_vulkan.h for trmv). rtdr filter, compare and bench choose through here, and rtdr eval through
 // SpecMethods, by each method spec's backend=.
 #pragma once
 
@@ -22,6 +22,11 @@ struct BackendMethod {
 
 // Throws rtdr::Error for an unknown back end or method, a method without a Vulkan port, or no Vulkan device.
 BackendMethod make_backend_method(const std::string& backend, const std::string& method, const MethodParams& params);
+
+// The Vulkan port of `method` on `context`: TrmvVulkan for trmv, SvgfVulkan for the others (which throws for a
+// method whose stages have no port). Throws rtdr::Error for an unknown method.
+std::unique_ptr<Method> make_vulkan_method(VulkanContext& context, const std::string& method,
+                                           const MethodParams& params);
 
 // The method's output frame for `in` with its dump's layers (every intermediate buffer, docs/buffers.md) added:
 // what `rtdr filter --dump-passes` writes and `rtdr compare` compares.

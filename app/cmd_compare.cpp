@@ -141,7 +141,7 @@ Command add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* sub = app.add_subcommand("compare", "run SVGF on the golden passes and the Vulkan ports, report the "
                                                 "per-channel differences of every output and intermediate buffer");
-  sub->add_option("--method", o->method, "the method (svgf: the one with Vulkan ports)")->capture_default_str();
+  sub->add_option("--method", o->method, "the method (svgf, asvgf or trmv: those with Vulkan ports)")->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--frames", o->frames, frames_help("; default: every frame in --in"));
   sub->add_option("--csv", o->csv, "also write one row per frame and channel to this CSV file");

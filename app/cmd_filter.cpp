@@ -101,7 +101,7 @@ Command add_filter_command(CLI::App& app) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* sub = app.add_subcommand("filter", "denoise a rendered sequence with one method");
   sub->add_option("--method", o->method, "svgf, asvgf, a-eaw, accum, eaw, eaw-accum, none or trmv")->capture_default_str();
-  sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports; svgf only)")
+  sub->add_option("--backend", o->backend, "cpu (the golden passes) or vulkan (the shader ports: svgf, asvgf, trmv)")
       ->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--out", o->out, "output directory (created if missing)")->required();

@@ -16,7 +16,7 @@
 // A method is named by a spec "name[:param=value[:param=value...]]", e.g. "svgf:atrous_levels=3", where the
 // parameters are rows of filters/svgf/svgf_params.h or filters/asvgf/asvgf_params.h; adding a method is a line in filters/method.cpp. Two more
 // keys choose where it runs: backend=cpu (the golden passes, the default) or backend=vulkan (the shader ports,
-// svgf only), and with backend=vulkan, illumination=fp32 or fp16 (the ports' illumination records,
+// svgf, asvgf and trmv), and with backend=vulkan, illumination=fp32 or fp16 (the ports' illumination records,
 // gpu/vulkan_context.h; without it, $RTDR_VK_ILLUMINATION or the device's default).
 // Keys gradient_<row> set a row of trace/gradients.h's table for this method's input alone, e.g.
 // "asvgf:gradient_stratum_size=2": the method runs on frames with gradient samples made with the run's gradient

@@ -71,6 +71,21 @@ TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width,
                       .restart_history = 0u};
 }
 
+// The push constants of one 1-D pass along `axis` (trmv_spatial_axis's arguments).
+TrmvSpatialPush trmv_spatial_push(int w, int h, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
+                                  const SvgfParams& edges) {
+  return TrmvSpatialPush{.width = uint32_t(w),
+                         .height = uint32_t(h),
+                         .axis_x = axis.x,
+                         .axis_y = axis.y,
+                         .radius = radius,
+                         .has_sigma_plane = sigma_plane ? 1u : 0u,
+                         .sigma = sigma_all,
+                         .sigma_z = edges.sigma_z,
+                         .sigma_n = edges.sigma_n,
+                         .epsilon = edges.epsilon};
+}
+
 VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params) {
   return VariancePush{.width = width,
                       .height = height,
@@ -193,9 +208,10 @@ void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& i
 }
 
 void SvgfShaders::trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
-                               const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push) const {
+                               const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push,
+                               const char* label) const {
   batch.dispatch(trmv_spatial_, {&color_sigma, &surface, &depth_grad, &out}, &push, groups_x(push.width),
-                 groups_y(push.height), "trmv_spatial");
+                 groups_y(push.height), label);
 }
 
 void SvgfShaders::trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,

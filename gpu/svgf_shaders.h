@@ -101,6 +101,10 @@ TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width,
                            const SvgfParams& params);
 VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params);
 AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfParams& params, bool keep_prefiltered);
+// The push constants of one 1-D pass of TRMV's joint bilateral along `axis` (trmv_spatial_axis's arguments): the
+// spatial filter's sigma everywhere, or each pixel's own std (`sigma_plane`, the clean-up's).
+TrmvSpatialPush trmv_spatial_push(int width, int height, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
+                                  const SvgfParams& edges);
 
 // Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
 // then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).
@@ -139,8 +143,10 @@ class SvgfShaders {
   void trmv_falloff(ComputeBatch& batch, const TrmvFalloffPlanes& in, const GpuBuffer& theta_alpha_out,
                     const TrmvFalloffPush& push) const;
   // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h).
+  // `label`: the pass its time counts to (the clean-up's bilateral is part of "trmv_cleanup").
   void trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
-                    const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push) const;
+                    const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push,
+                    const char* label = "trmv_spatial") const;
   // [TRMV21 Eq. 7, Eq. 8, Sec. 5]: cbar_i and the histories -> (cbar_i, std) and (w_A, w_C, std)
   // (filters/trmv/cleanup_shared.h).
   void trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,

@@ -42,21 +42,6 @@ Guides pack_guides(VulkanContext& context, const SurfacePlanes& s, int w, int h)
   return g;
 }
 
-// The push constants of one 1-D pass along `axis` (trmv_spatial_axis's arguments).
-TrmvSpatialPush spatial_push(int w, int h, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
-                             const SvgfParams& edges) {
-  return TrmvSpatialPush{.width = uint32_t(w),
-                         .height = uint32_t(h),
-                         .axis_x = axis.x,
-                         .axis_y = axis.y,
-                         .radius = radius,
-                         .has_sigma_plane = sigma_plane ? 1u : 0u,
-                         .sigma = sigma_all,
-                         .sigma_z = edges.sigma_z,
-                         .sigma_n = edges.sigma_n,
-                         .epsilon = edges.epsilon};
-}
-
 }  // namespace
 
 RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s,
@@ -73,9 +58,9 @@ RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const Su
   // Horizontal, then vertical: the separable form of the 31x31 joint bilateral [TRMV21 Sec. 5]
   // (trmv_spatial_pass), spatial_sigma everywhere.
   const TrmvSpatialPush horizontal =
-      spatial_push(w, h, kTrmvHorizontal, params.spatial_radius, false, params.spatial_sigma, edges);
+      trmv_spatial_push(w, h, kTrmvHorizontal, params.spatial_radius, false, params.spatial_sigma, edges);
   const TrmvSpatialPush vertical =
-      spatial_push(w, h, kTrmvVertical, params.spatial_radius, false, params.spatial_sigma, edges);
+      trmv_spatial_push(w, h, kTrmvVertical, params.spatial_radius, false, params.spatial_sigma, edges);
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 2);
   shaders.trmv_spatial(batch, *input, *g.surface, *g.depth_grad, *rows, horizontal);
@@ -122,13 +107,13 @@ TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporal
                              .cleanup_eps = params.cleanup_eps,
                              .cleanup_sigma_max = params.cleanup_sigma_max};
   // Eq. 7-8 at every pixel, then the 9x9 separable joint bilateral with each pixel's std (trmv_cleanup_pass).
-  const TrmvSpatialPush horizontal = spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges);
-  const TrmvSpatialPush vertical = spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges);
+  const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges);
+  const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges);
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 3);
   shaders.trmv_cleanup(batch, *color, *fetched_alpha_v, *clamped, *color_sigma, *weights, push);
-  shaders.trmv_spatial(batch, *color_sigma, *g.surface, *g.depth_grad, *rows, horizontal);
-  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *filtered, vertical);
+  shaders.trmv_spatial(batch, *color_sigma, *g.surface, *g.depth_grad, *rows, horizontal, "trmv_cleanup");
+  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *filtered, vertical, "trmv_cleanup");
   batch.run();
   batch.total_time(ms);
 

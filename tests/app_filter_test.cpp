@@ -272,7 +272,7 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
       "filter --in " + seq + " --out " + out + " --taa-alpha 1.5",                      // out of range
       "filter --in " + seq + " --out " + out + " --method eaw --eaw-levels 11",         // out of range
       "filter --in " + seq + " --out " + out + " --backend metal",                      // unknown back end
-      "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // svgf only
+      "filter --in " + seq + " --out " + out + " --backend vulkan --method accum",      // no port
       "compare --in " + seq + " --csv " + out + "/c.csv --rel-floor 0",                 // floor must be > 0
       "compare --in " + seq + " --csv " + out + "/c.csv --max-rel-error -1",            // bound must be >= 0
       "compare --in " + nan.string() + " --csv " + out + "/c.csv",                      // NaN in direct.G

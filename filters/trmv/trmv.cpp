@@ -28,7 +28,15 @@ RgbPlane shade(const RgbPlane& shading, const RgbPlane& visibility) {
   return out;
 }
 
-// The glossy motion where Eq. 5 gave one [TRMV21 Eq. 5], the surface motion elsewhere (motion/glossy.h).
+}  // namespace
+
+RgbPlane trmv_remodulate(const Frame& in, const RgbPlane& visibility, const RgbPlane& diffuse, const RgbPlane& glossy) {
+  RgbPlane indirect = diffuse;
+  for (size_t i = 0; i < indirect.data.size(); ++i) indirect.data[i] += glossy.data[i];
+  return remodulate(shade(rgb_plane(in, "direct.shading"), visibility), indirect, rgb_plane(in, "albedo"),
+                    rgb_plane(in, "emission"));
+}
+
 Vec2Plane glossy_or_surface_motion(const Frame& in, const Vec2Plane& surface) {
   Vec2Plane m = xy_plane(in, "motion.glossy");
   const UIntPlane& valid = in.uint_channel("motion.glossy.valid");
@@ -36,8 +44,6 @@ Vec2Plane glossy_or_surface_motion(const Frame& in, const Vec2Plane& surface) {
     if (valid.data[i] == 0) m.data[i] = surface.data[i];
   return m;
 }
-
-}  // namespace
 
 InputChannels trmv_input_channels() {
   // Not `direct`: its direct light is the shading term times the filtered visibility. Not `indirect`: its two
@@ -153,12 +159,7 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
   prev_positions_ = {receiver_.position, surface_.mesh};
 
   RgbPlane color, display;
-  time_pass("modulate", [&] {
-    RgbPlane indirect = diffuse;
-    for (size_t i = 0; i < indirect.data.size(); ++i) indirect.data[i] += glossy.data[i];
-    color = remodulate(shade(rgb_plane(in, "direct.shading"), v), indirect, rgb_plane(in, "albedo"),
-                       rgb_plane(in, "emission"));
-  });
+  time_pass("modulate", [&] { color = trmv_remodulate(in, v, diffuse, glossy); });
   time_pass("tonemap", [&] { display = tonemap(color, params_.tonemap); });
   this->dump(dump, theta, display);
 
@@ -202,8 +203,7 @@ void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tone
   dump_layer(dump, kTonemapped, {}, -1, tonemapped);
 }
 
-std::vector<std::string> TrmvFilter::probe_passes() const {
-  const TrmvParams& p = params_.trmv;
+std::vector<std::string> trmv_passes(const TrmvParams& p) {
   std::vector<std::string> passes = {"trmv_spatial"};
   if (trmv_uses_shadow(p.motion)) passes.push_back("trmv_falloff");
   if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back("trmv_reshade");
@@ -211,9 +211,13 @@ std::vector<std::string> TrmvFilter::probe_passes() const {
   return passes;
 }
 
-std::vector<std::string> TrmvFilter::dump_channels() const {
+std::vector<std::string> TrmvFilter::probe_passes() const { return trmv_passes(params_.trmv); }
+
+std::vector<std::string> TrmvFilter::dump_channels() const { return trmv_dump_channels(params_.trmv); }
+
+std::vector<std::string> trmv_dump_channels(const TrmvParams& params) {
   std::vector<std::string> channels;
-  for (const std::string& name : probe_passes())
+  for (const std::string& name : trmv_passes(params))
     for (const LayerDecl* layer : find_pass(name).writes)
       for (std::string& c : layer_channels(*layer)) channels.push_back(std::move(c));
   for (std::string& c : layer_channels(layers::kTonemapped)) channels.push_back(std::move(c));

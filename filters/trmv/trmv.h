@@ -38,6 +38,16 @@ namespace rtdr {
 
 // The channels trmv reads from each input frame.
 InputChannels trmv_input_channels();
+// The passes trmv runs with these parameters, in order (filters/passes.h), and the channels of their dump layers
+// and the tone-mapped colour: what both back ends dump (TrmvFilter, gpu/trmv_vulkan.h).
+std::vector<std::string> trmv_passes(const TrmvParams& params);
+std::vector<std::string> trmv_dump_channels(const TrmvParams& params);
+// The colour from the three filtered components: direct = direct.shading x V, indirect = diffuse + glossy,
+// remodulated with the albedo, emission added [TRMV21 Sec. 4.1] [SVGF17 Sec. 3]. `visibility` is (V, V, V).
+RgbPlane trmv_remodulate(const Frame& in, const RgbPlane& visibility, const RgbPlane& diffuse, const RgbPlane& glossy);
+// The glossy light's motion: the glossy vector where Eq. 5 gave one [TRMV21 Eq. 5], the surface motion elsewhere
+// (motion/glossy.h).
+Vec2Plane glossy_or_surface_motion(const Frame& in, const Vec2Plane& surface);
 
 class TrmvFilter : public Method {
  public:

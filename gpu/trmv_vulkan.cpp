@@ -1,0 +1,300 @@
+// The TRMV filter on a Vulkan device. See trmv_vulkan.h; the golden pipeline it follows is filters/trmv/trmv.cpp.
+#include "gpu/trmv_vulkan.h"
+
+#include "core/error.h"
+#include "filters/passes.h"
+#include "filters/svgf/tonemap.h"
+#include "filters/trmv/spatial.h"
+#include "filters/trmv/trmv.h"
+#include "gpu/svgf_planes.h"
+
+#include <chrono>
+#include <string>
+
+namespace rtdr {
+
+namespace {
+
+using PlanePtr = std::unique_ptr<GpuBuffer>;
+using Clock = std::chrono::steady_clock;
+
+enum Component { kVisibility = 0, kDiffuse = 1, kGlossy = 2 };
+
+// Commands per frame: the falloff; per component two spatial dispatches, the temporal blend, the clean-up and its
+// two 1-D dispatches, a copy of the history when it is taken after the clean-up, and the copy of the result into
+// readback memory.
+constexpr uint32_t kCommandsPerFrame = 1 + 3 * (2 + 1 + 3 + 1 + 1);
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+// Every device plane. [parity] pairs alternate between frames: [frame parity] is written this frame, the other holds
+// the previous frame's. [k]: the component (Component).
+struct TrmvVulkan::Buffers {
+  int width, height;
+  // The G-buffer: (n, z) records, depth gradients, geometric normals; id.mesh and positions per parity (the
+  // previous ones are the temporal pass's and the falloff's).
+  PlanePtr surface, depth_grad, normal, mesh[2], position[2];
+  // Per component: the noisy input (visibility as (V, V, V)), its motion, c~_i, the temporal pass's (cbar_i, alpha)
+  // (when the history is taken after the clean-up), the fetched history with the alpha-plane value, the clamped
+  // history, the clean-up's (cbar_i, std) and (w_A, w_C, std), the cleaned colour and its readback copy; the
+  // history (cbar_i, alpha) per parity.
+  PlanePtr noisy[3], motion[3], filtered[3], temporal[3], fetched[3], clamped[3], color_sigma[3], weights[3],
+      cleaned[3], readback[3], history[3][2];
+  // The visibility's shadow motion validity (the falloff's), its (theta, alpha^V), the diffuse light's re-shaded
+  // history (r, g, b, valid), the 1-D passes' intermediate, and one unread texel of each kind for absent planes.
+  PlanePtr shadow_valid, falloff, reshaded, rows, no_ids, no_records, no_pairs;
+
+  Buffers(VulkanContext& context, int w, int h) : width(w), height(h) {
+    const auto rgba = [&] { return plane_buffer(context, w, h, TexelFormat::RGBA32F); };
+    surface = rgba();
+    normal = rgba();
+    depth_grad = plane_buffer(context, w, h, TexelFormat::RG32F);
+    for (int s = 0; s < 2; ++s) {
+      mesh[s] = plane_buffer(context, w, h, TexelFormat::R32UI);
+      position[s] = rgba();
+    }
+    for (int k = 0; k < 3; ++k) {
+      noisy[k] = rgba();
+      motion[k] = plane_buffer(context, w, h, TexelFormat::RG32F);
+      filtered[k] = rgba();
+      temporal[k] = rgba();
+      fetched[k] = rgba();
+      clamped[k] = rgba();
+      color_sigma[k] = rgba();
+      weights[k] = rgba();
+      cleaned[k] = rgba();
+      readback[k] = std::make_unique<GpuBuffer>(context, cleaned[k]->floats(), TexelFormat::None, Memory::Readback);
+      for (PlanePtr& history : history[k]) history = rgba();
+    }
+    shadow_valid = plane_buffer(context, w, h, TexelFormat::R32UI);
+    falloff = plane_buffer(context, w, h, TexelFormat::RG32F);
+    reshaded = rgba();
+    rows = rgba();
+    no_ids = plane_buffer(context, 1, 1, TexelFormat::R32UI);
+    no_records = plane_buffer(context, 1, 1, TexelFormat::RGBA32F);
+    no_pairs = plane_buffer(context, 1, 1, TexelFormat::RG32F);
+  }
+};
+
+TrmvVulkan::TrmvVulkan(VulkanContext& context, const MethodParams& params)
+    : context_(context),
+      params_(params),
+      shaders_(context),
+      batch_(context, kCommandsPerFrame),
+      cone_layout_(make_cone_layout(params.trmv.cone_half_angle)) {
+  validate(params_.trmv);
+  validate(params_.svgf);
+  validate(params_.tonemap);
+}
+
+TrmvVulkan::~TrmvVulkan() = default;
+
+void TrmvVulkan::reset() {
+  frames_ = 0;
+  cones_ = {};
+}
+
+InputChannels TrmvVulkan::inputs() const { return trmv_input_channels(); }
+
+std::vector<std::string> TrmvVulkan::dump_channels() const { return trmv_dump_channels(params_.trmv); }
+
+void TrmvVulkan::record_component(int k, const GpuBuffer* alpha_v) {
+  Buffers& b = *buffers_;
+  const TrmvParams& p = params_.trmv;
+  const SvgfParams& edges = params_.svgf;
+  const int w = b.width, h = b.height, cur = frames_ & 1, prev = cur ^ 1;
+  const bool has_history = frames_ > 0;
+  // 1. The spatial filter of the current frame, horizontal then vertical: c~_i [TRMV21 Sec. 5].
+  shaders_.trmv_spatial(batch_, *b.noisy[k], *b.surface, *b.depth_grad, *b.rows,
+                        trmv_spatial_push(w, h, kTrmvHorizontal, p.spatial_radius, false, p.spatial_sigma, edges));
+  shaders_.trmv_spatial(batch_, *b.rows, *b.surface, *b.depth_grad, *b.filtered[k],
+                        trmv_spatial_push(w, h, kTrmvVertical, p.spatial_radius, false, p.spatial_sigma, edges));
+  // 2-3. The history along the component's motion, clamped, blended [TRMV21 Eq. 2, Sec. 5]. Its output is next
+  //      frame's history unless that is taken after the clean-up (history_after_cleanup).
+  const bool reshaded = k == kDiffuse && trmv_uses_dual(p.motion) && p.cones != 0;
+  const GpuBuffer& temporal = p.history_after_cleanup != 0 ? *b.temporal[k] : *b.history[k][cur];
+  const TrmvTemporalPlanes in{b.filtered[k].get(),
+                              b.mesh[cur].get(),
+                              b.motion[k].get(),
+                              b.no_ids.get(),  // the method's vectors carry no validity: each falls back itself
+                              reshaded ? b.reshaded.get() : b.no_records.get(),
+                              b.history[k][prev].get(),
+                              b.mesh[prev].get(),
+                              alpha_v ? alpha_v : b.no_pairs.get()};
+  shaders_.trmv_temporal(batch_, in, temporal, *b.fetched[k], *b.clamped[k],
+                         TrmvTemporalPush{.width = uint32_t(w),
+                                          .height = uint32_t(h),
+                                          .prev_width = has_history ? uint32_t(w) : 0u,
+                                          .prev_height = has_history ? uint32_t(h) : 0u,
+                                          .has_history = has_history ? 1u : 0u,
+                                          .has_valid = 0u,
+                                          .has_reshaded = reshaded ? 1u : 0u,
+                                          .has_alpha = alpha_v ? 1u : 0u,
+                                          .alpha = p.alpha,
+                                          .clamp_gamma = p.clamp_gamma,
+                                          .clamp_radius = p.clamp_radius});
+  // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8], then its 9x9 bilateral
+  //    with each pixel's std; alpha^V rides in the fetched history's w.
+  shaders_.trmv_cleanup(batch_, temporal, *b.fetched[k], *b.clamped[k], *b.color_sigma[k], *b.weights[k],
+                        TrmvCleanupPush{.width = uint32_t(w),
+                                        .height = uint32_t(h),
+                                        .has_alpha_v = alpha_v ? 1u : 0u,
+                                        .alpha = p.alpha,
+                                        .cleanup_eps = p.cleanup_eps,
+                                        .cleanup_sigma_max = p.cleanup_sigma_max});
+  const int radius = (p.cleanup_size - 1) / 2;
+  shaders_.trmv_spatial(batch_, *b.color_sigma[k], *b.surface, *b.depth_grad, *b.rows,
+                        trmv_spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges), "trmv_cleanup");
+  shaders_.trmv_spatial(batch_, *b.rows, *b.surface, *b.depth_grad, *b.cleaned[k],
+                        trmv_spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges), "trmv_cleanup");
+  if (p.history_after_cleanup != 0) batch_.copy(*b.cleaned[k], *b.history[k][cur], "trmv_cleanup");
+  // The result where the host reads it fast (compute.h's Memory::Readback).
+  batch_.copy(*b.cleaned[k], *b.readback[k], kTransferPass);
+}
+
+Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
+  times_.clear();
+  const int w = in.width(), h = in.height();
+  if (buffers_ && frames_ > 0 && (buffers_->width != w || buffers_->height != h))
+    throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(w) + "x" +
+                std::to_string(h) + ", was " + std::to_string(buffers_->width) + "x" +
+                std::to_string(buffers_->height) + ")");
+  if (!buffers_ || buffers_->width != w || buffers_->height != h) buffers_ = std::make_unique<Buffers>(context_, w, h);
+  Buffers& b = *buffers_;
+  const TrmvParams& p = params_.trmv;
+  const int cur = frames_ & 1;
+
+  // 1. Upload: the host packs this frame's planes into the device's records.
+  const auto t0 = Clock::now();
+  const SurfacePlanes surface = SurfacePlanes::from_frame(in);
+  pack_surface(surface, *b.surface);
+  pack_vec2(surface.depth_grad, *b.depth_grad);
+  pack_ids(surface.mesh, *b.mesh[cur]);
+  pack_rgb(xyz_plane(in, "position"), *b.position[cur]);
+  pack_rgb(xyz_plane(in, "geonormal"), *b.normal);
+  // The noisy components; visibility is one value a pixel, travelling as (V, V, V).
+  const FloatPlane& v = in.float_channel("direct.visibility");
+  float* grey = b.noisy[kVisibility]->data();
+  for (size_t i = 0; i < v.data.size(); ++i) {
+    grey[4 * i] = grey[4 * i + 1] = grey[4 * i + 2] = v.data[i];
+    grey[4 * i + 3] = 0.0f;
+  }
+  pack_rgb(rgb_plane(in, "indirect.diffuse"), *b.noisy[kDiffuse]);
+  pack_rgb(rgb_plane(in, "indirect.glossy"), *b.noisy[kGlossy]);
+  // Each component's vector (trmv.h): the splatted shadow motion, the dual motion, the glossy motion, or the surface
+  // motion where the parameters swap that vector out.
+  const bool shadow = trmv_uses_shadow(p.motion), dual = trmv_uses_dual(p.motion);
+  const TrmvMotion shadow_motion{shadow ? xy_plane(in, "motion.shadow_splat") : Vec2Plane(),
+                                 shadow ? in.uint_channel("motion.shadow_splat.valid") : UIntPlane(), {}, {}};
+  const TrmvMotion dual_motion{dual ? xy_plane(in, "motion.dual") : Vec2Plane(),
+                               dual ? in.uint_channel("motion.dual.valid") : UIntPlane(), {}, {}};
+  pack_vec2(shadow ? shadow_motion.motion : surface.motion, *b.motion[kVisibility]);
+  if (shadow) pack_ids(shadow_motion.valid, *b.shadow_valid);
+  pack_vec2(dual ? dual_motion.motion : surface.motion, *b.motion[kDiffuse]);
+  pack_vec2(trmv_uses_glossy(p.motion) ? glossy_or_surface_motion(in, surface.motion) : surface.motion,
+            *b.motion[kGlossy]);
+  times_[kTransferPass] += ms_since(t0);
+
+  // 2. The cone re-shading on the host [TRMV21 Sec. 4.3, Eq. 9-11]: its re-shaded history is uploaded with the
+  //    rest.
+  seen_cones_ = std::move(cones_);  // replaced below by this frame's
+  RgbPlane reshaded;
+  if (dual && p.cones != 0) {
+    const auto r0 = Clock::now();
+    TrmvReshadeOutput r = trmv_reshade_pass(TrmvConeInputs::from_frame(in), surface, dual_motion, seen_cones_,
+                                            cone_layout_, p, params_.svgf);
+    cones_ = std::move(r.history);
+    reshaded = std::move(r.reshaded);
+    pack_rgb(reshaded, *b.reshaded);
+    float* records = b.reshaded->data();
+    for (size_t i = 0; i < r.reshaded_valid.data.size(); ++i) records[4 * i + 3] = r.reshaded_valid.data[i] != 0 ? 1.0f : 0.0f;
+    times_["trmv_reshade"] += ms_since(r0);
+  }
+
+  // 3. One batch of dispatches, in TrmvFilter's order [TRMV21 Sec. 5].
+  const uint32_t uw = uint32_t(w), uh = uint32_t(h);
+  if (shadow) {  // alpha^V from the shadow motion and the previous positions [TRMV21 Eq. 4]
+    const bool has_prev = frames_ > 0;
+    const TrmvFalloffPlanes planes{b.position[cur].get(), b.normal.get(),          b.mesh[cur].get(),
+                                   b.motion[kVisibility].get(), b.shadow_valid.get(), b.position[cur ^ 1].get(),
+                                   b.mesh[cur ^ 1].get()};
+    shaders_.trmv_falloff(batch_, planes, *b.falloff,
+                          TrmvFalloffPush{.width = uw,
+                                          .height = uh,
+                                          .prev_width = has_prev ? uw : 0u,
+                                          .prev_height = has_prev ? uh : 0u,
+                                          .has_prev = has_prev ? 1u : 0u,
+                                          .has_valid = 1u,
+                                          .alpha = p.alpha,
+                                          .falloff_sigma = p.falloff_sigma});
+  }
+  record_component(kVisibility, shadow ? b.falloff.get() : nullptr);
+  record_component(kDiffuse, nullptr);
+  record_component(kGlossy, nullptr);
+  batch_.run();
+  ++frames_;
+  for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
+
+  // 4. Download the three cleaned components; remodulate and tone map on the host (trmv_vulkan.h).
+  const auto t1 = Clock::now();
+  const RgbPlane vis = unpack_rgb(*b.readback[kVisibility], w, h), diffuse = unpack_rgb(*b.readback[kDiffuse], w, h),
+                 glossy = unpack_rgb(*b.readback[kGlossy], w, h);
+  times_[kTransferPass] += ms_since(t1);
+  RgbPlane color, display;
+  time_pass("modulate", [&] { color = trmv_remodulate(in, vis, diffuse, glossy); });
+  time_pass("tonemap", [&] { display = tonemap(color, params_.tonemap); });
+
+  Frame out(w, h);
+  out.source = in.source;
+  set_rgb_plane(out, layer_name(layers::kColor), color);
+  set_rgb_plane(out, layer_name(layers::kDisplay), display);  // no TAA: the tone-mapped colour
+  if (dump) {
+    if (dump->width() != w || dump->height() != h) *dump = Frame(w, h);
+    this->dump(in, *dump, display);
+    if (dual && p.cones != 0) dump_layer(dump, layers::kTrmvDiffuseReshaded, {}, -1, reshaded);
+  }
+  return out;
+}
+
+// TrmvFilter's dump layers, read from this frame's device planes (mapped; each component has its own).
+void TrmvVulkan::dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const {
+  using namespace layers;
+  const Buffers& b = *buffers_;
+  const TrmvParams& p = params_.trmv;
+  const int w = in.width(), h = in.height(), cur = (frames_ - 1) & 1;
+  const auto first = [&](const PlanePtr& plane) { return unpack_channel(*plane, w, h, 4, 0); };
+  const auto rgb = [&](const PlanePtr& plane) { return unpack_rgb(*plane, w, h); };
+  const auto temporal = [&](int k) -> const PlanePtr& {
+    return p.history_after_cleanup != 0 ? b.temporal[k] : b.history[k][cur];
+  };
+  Frame* d = &out;
+  dump_layer(d, kTrmvVisibilitySpatial, {}, -1, first(b.filtered[kVisibility]));
+  dump_layer(d, kTrmvDiffuseSpatial, {}, -1, rgb(b.filtered[kDiffuse]));
+  dump_layer(d, kTrmvGlossySpatial, {}, -1, rgb(b.filtered[kGlossy]));
+  if (trmv_uses_shadow(p.motion)) {
+    dump_layer(d, kTrmvTheta, {}, -1, unpack_channel(*b.falloff, w, h, 2, 0));
+    dump_layer(d, kTrmvAlphaV, {}, -1, unpack_channel(*b.falloff, w, h, 2, 1));
+  }
+  dump_layer(d, kTrmvWeightA, {}, -1, unpack_channel(*b.weights[kVisibility], w, h, 4, 0));
+  dump_layer(d, kTrmvVisibilityTemporal, {}, -1, first(temporal(kVisibility)));
+  dump_layer(d, kTrmvVisibilityClamped, {}, -1, first(b.clamped[kVisibility]));
+  dump_layer(d, kTrmvDiffuseTemporal, {}, -1, rgb(temporal(kDiffuse)));
+  dump_layer(d, kTrmvDiffuseClamped, {}, -1, rgb(b.clamped[kDiffuse]));
+  dump_layer(d, kTrmvGlossyTemporal, {}, -1, rgb(temporal(kGlossy)));
+  dump_layer(d, kTrmvGlossyClamped, {}, -1, rgb(b.clamped[kGlossy]));
+  dump_layer(d, kTrmvVisibilityWeightC, {}, -1, unpack_channel(*b.weights[kVisibility], w, h, 4, 1));
+  dump_layer(d, kTrmvDiffuseWeightC, {}, -1, unpack_channel(*b.weights[kDiffuse], w, h, 4, 1));
+  dump_layer(d, kTrmvGlossyWeightC, {}, -1, unpack_channel(*b.weights[kGlossy], w, h, 4, 1));
+  dump_layer(d, kTrmvVisibilityCleaned, {}, -1, first(b.cleaned[kVisibility]));
+  dump_layer(d, kTrmvDiffuseCleaned, {}, -1, rgb(b.cleaned[kDiffuse]));
+  dump_layer(d, kTrmvGlossyCleaned, {}, -1, rgb(b.cleaned[kGlossy]));
+  dump_layer(d, kTonemapped, {}, -1, tonemapped);
+}
+
+Probe TrmvVulkan::probe(const std::string&, int, int, const std::string&, int) const {
+  throw Error("rtdr probe runs the golden passes: use --backend cpu");
+}
+
+}  // namespace rtdr

@@ -1,0 +1,69 @@
+// TRMV, the whole filter, on a Vulkan device: the Method behind `rtdr filter --backend vulkan --method trmv`. The
+// same passes in the same order as TrmvFilter (filters/trmv/trmv.h), each a dispatch of the ports in
+// filters/trmv/*.comp, with every plane and history on the device:
+//   visibility V:  the spatial filter (two 1-D dispatches) -> the falloff (alpha^V, with the shadow motion)
+//                  [TRMV21 Eq. 4] -> the temporal blend and clamp [TRMV21 Eq. 2, Sec. 5] -> the clean-up
+//                  [TRMV21 Eq. 7-8] (one dispatch and two 1-D ones)
+//   diffuse:       the spatial filter -> the temporal blend along the dual motion, whose disoccluded pixels take the
+//                  history re-shaded from the cones -> the clean-up
+//   glossy:        the spatial filter -> the temporal blend along the glossy motion -> the clean-up
+// What stays on the host, as the golden code:
+//   - the cone re-shading [TRMV21 Sec. 4.3, Eq. 9-11] (filters/trmv/reshade.h): it integrates each pixel's path
+//     sample, a ray-tracing step, and its result is uploaded as the temporal pass's re-shaded history; timed as
+//     "trmv_reshade" (host wall time);
+//   - the remodulation (trmv_remodulate: direct.shading x V + diffuse + glossy, times the albedo, plus emission) and
+//     the tone mapping, on the three cleaned components read back; timed as "modulate" and "tonemap" (host wall
+//     time). They are SVGF's passes, a few ms at 1080p; TRMV has no TAA.
+// The motion vectors are the frame's layers (motion.shadow_splat, motion.dual, motion.glossy): the render side made
+// them; their own ports are gpu/motion_*_gpu.h.
+//
+// pass_times(): each port's device time (timestamps) summed over its dispatches and components, the host passes
+// above, and "transfer": packing the inputs and unpacking the outputs.
+//
+// filter(in, dump) with a dump gives TrmvFilter's dump layers (filters/passes.h), read from the device's planes
+// after the frame's batch (each component has its own planes). Passes are not probed: that stays with the golden
+// TrmvFilter (--backend cpu). Buffers are made for the first frame's size; a later frame of another size throws.
+#pragma once
+
+#include "filters/method.h"
+#include "filters/trmv/cones.h"
+#include "filters/trmv/reshade.h"
+#include "gpu/svgf_shaders.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rtdr {
+
+class TrmvVulkan : public Method {
+ public:
+  TrmvVulkan(VulkanContext& context, const MethodParams& params);
+  ~TrmvVulkan() override;
+  std::string name() const override { return "trmv"; }
+  Frame filter(const Frame& in, Frame* dump) override;
+  void reset() override;
+  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
+  std::vector<std::string> probe_passes() const override { return {}; }
+  InputChannels inputs() const override;
+  std::vector<std::string> dump_channels() const override;
+
+ private:
+  struct Buffers;  // every device plane, made for one frame size
+  // Records one component's spatial filter, temporal blend and clean-up into batch_ (`k`: 0 visibility, 1 diffuse,
+  // 2 glossy); `alpha_v` is the visibility's alpha plane, or null.
+  void record_component(int k, const GpuBuffer* alpha_v);
+  void dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const;
+
+  VulkanContext& context_;
+  MethodParams params_;
+  SvgfShaders shaders_;
+  ComputeBatch batch_;
+  std::unique_ptr<Buffers> buffers_;
+  ConeLayout cone_layout_;       // the re-shading's cones (cones.h)
+  TrmvConeHistory cones_;        // this frame's cones: next frame's history
+  TrmvConeHistory seen_cones_;   // those the re-shading read this frame
+  int frames_ = 0;               // frames since the last reset: 0 means no history
+};
+
+}  // namespace rtdr

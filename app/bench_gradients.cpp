@@ -3,16 +3,76 @@
 // gradient samples from the frame before (render_frame_with_gradients: selection, forward projection, merge,
 // and the re-shading, which replaces a pixel's shading rather than adding one), and the ratio. Target: at most
 // 10% over the plain frame. Also the share of pixels that are gradient samples (at most 1/9 with 3x3 strata).
+// With --backend vulkan (or cpu,vulkan), also the two integer steps of the samples [ASVGF18 Sec. 3.3] alone: the
+// selection of a source pixel per stratum (step 2, select_gradient_source at every stratum) and the merge of the
+// candidates that survive forward projection into one per stratum of the frame (step 5, gradient_winners), each
+// on the CPU (wall time, the selection over parallel stratum rows) and as its Vulkan port (gpu/gradient_select_gpu.h,
+// the median of its dispatches' timestamps over the same runs).
+#include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "gpu/gradient_select_gpu.h"
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 
 namespace rtdr {
+namespace {
+
+// The median device time (the ports' `ms` out-parameter) of `runs` calls of run(double* ms), after `warmup` untimed
+// ones (at least one: lavapipe compiles the shader on the first).
+template <class Run>
+double median_port_ms(int warmup, int runs, Run&& run) {
+  for (int i = 0; i < std::max(1, warmup); ++i) run(nullptr);
+  std::vector<double> ms;
+  for (int i = 0; i < runs; ++i) {
+    double t = 0.0;
+    run(&t);
+    ms.push_back(t);
+  }
+  return median(ms);
+}
+
+// Steps 2 and 5 of frame f's gradient samples [ASVGF18 Sec. 3.3], timed on the CPU and as the Vulkan ports.
+struct StepTimes {
+  double select_ms = 0.0, merge_ms = 0.0, select_vulkan_ms = 0.0, merge_vulkan_ms = 0.0;
+};
+
+StepTimes time_steps(const BenchOptions& o, VulkanContext& context, const Scene& scene, const Frame& prev, int f,
+                     Size size, uint32_t seed) {
+  const PreviousFrame previous = PreviousFrame::from_frame(prev);
+  const FrameGeometry current = rasterize_frame(scene, f, size.width, size.height);
+  const int s = o.gradient.stratum_size;
+  const int strata_x = (size.width + s - 1) / s, strata_y = (size.height + s - 1) / s;
+  StepTimes t;
+  // Step 2 as gradient_samples runs it, stratum rows in parallel.
+  std::vector<uint32_t> sources(size_t(strata_x) * size_t(strata_y));
+  t.select_ms = median_ms(o.warmup, o.runs, [&] {
+    parallel_rows(strata_y, [&](int sy) {
+      for (int sx = 0; sx < strata_x; ++sx)
+        sources[size_t(sy) * size_t(strata_x) + size_t(sx)] =
+            select_gradient_source(previous, sx, sy, o.gradient, seed, f);
+    });
+  });
+  t.select_vulkan_ms = median_port_ms(o.warmup, o.runs, [&](double* ms) {
+    select_gradient_sources_vulkan(context, previous, o.gradient, seed, f, ms);
+  });
+  // Step 5 on the candidates of steps 2-4.
+  const std::vector<GradientCandidate> candidates =
+      candidate_list(gradient_candidates(scene, current, previous, o.gradient, seed));
+  t.merge_ms = median_ms(o.warmup, o.runs, [&] { gradient_winners(candidates, s, strata_x, strata_y); });
+  t.merge_vulkan_ms = median_port_ms(o.warmup, o.runs, [&](double* ms) {
+    gradient_winners_vulkan(context, candidates, size.width, size.height, s, ms);
+  });
+  return t;
+}
+
+}  // namespace
 
 void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) {
   // Each run builds a new frame of some 200 MB at 720p and drops the last one. By default glibc hands such blocks
@@ -20,8 +80,17 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
   // run by a factor of three. Keep freed memory in the process, so that both columns time the rendering.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  std::printf("%-14s %9s %10s %14s %7s %10s   (median of %d runs, %d threads, strata of %d)\n", "scene", "size",
-              "plain ms", "gradients ms", "ratio", "gradients", o.runs, thread_count(), o.gradient.stratum_size);
+  const std::vector<std::string> backends = parse_backends(o.backend);
+  std::unique_ptr<VulkanContext> context;  // the ports' device, with --backend vulkan
+  if (std::find(backends.begin(), backends.end(), "vulkan") != backends.end()) {
+    context = std::make_unique<VulkanContext>();
+    std::printf("vulkan device %s (%s, %s-buffer inputs): select vk and merge vk are the ports' device times\n",
+                context->device_name().c_str(), context->memory_summary().c_str(),
+                shader_inputs_name(context->shader_inputs()));
+  }
+  std::printf("%-14s %9s %10s %14s %7s %10s", "scene", "size", "plain ms", "gradients ms", "ratio", "gradients");
+  if (context) std::printf(" %9s %9s %9s %9s", "select ms", "select vk", "merge ms", "merge vk");
+  std::printf("   (median of %d runs, %d threads, strata of %d)\n", o.runs, thread_count(), o.gradient.stratum_size);
   const RenderSettings settings;  // 1 spp, seed 0: what A-SVGF gets
   for (const std::string& name : bench_scene_list(o.scenes)) {
     const Scene scene = load_scene(name);
@@ -36,8 +105,14 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
     });
     const double share = gradient_sample_share(frame);
     const double ratio = gradient_ms / plain_ms;
-    std::printf("%-14s %4dx%-4d %10.1f %14.1f %7.3f %9.2f%%\n", name.c_str(), size.width, size.height, plain_ms,
+    StepTimes steps;
+    if (context) steps = time_steps(o, *context, scene, prev, f, size, settings.seed);
+    std::printf("%-14s %4dx%-4d %10.1f %14.1f %7.3f %9.2f%%", name.c_str(), size.width, size.height, plain_ms,
                 gradient_ms, ratio, 100.0 * share);
+    if (context)
+      std::printf(" %9.3f %9.3f %9.3f %9.3f", steps.select_ms, steps.select_vulkan_ms, steps.merge_ms,
+                  steps.merge_vulkan_ms);
+    std::printf("\n");
     if (csv) {
       const std::string row = "gradients," + name + ',' + std::to_string(size.width) + ',' +
                               std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';
@@ -45,6 +120,11 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
            << row << "gradients_ms," << gradient_ms << '\n'
            << row << "ratio," << ratio << '\n'
            << row << "gradient_share," << share << '\n';
+      if (context)
+        *csv << row << "select_ms," << steps.select_ms << '\n'
+             << row << "select_vulkan_ms," << steps.select_vulkan_ms << '\n'
+             << row << "merge_ms," << steps.merge_ms << '\n'
+             << row << "merge_vulkan_ms," << steps.merge_vulkan_ms << '\n';
     }
   }
 }

@@ -6,6 +6,7 @@
 #include "core/parallel.h"
 #include "motion/backproject.h"
 #include "motion/forward_project.h"
+#include "trace/gradient_select_shared.h"
 #include "trace/sampler.h"
 
 #include <map>
@@ -24,10 +25,6 @@ bool set_param(GradientParams& params, const std::string& key, double value) {
 }
 
 namespace {
-
-// Salts the selection's hash, so that the stratum's choice is independent of the pixel seeds made from the
-// same global seed (trace/sampler.h's pixel_seed).
-constexpr uint32_t kSelectionSalt = 0x41535647u;  // "ASVG"
 
 // The luminance of a frame's demodulated stream `layer` ("direct" or "indirect") at every pixel.
 std::vector<float> luminance_of(const Frame& frame, const std::string& layer) {
@@ -97,9 +94,9 @@ uint32_t select_gradient_source(const PreviousFrame& prev, int sx, int sy, const
   };
   if (params.selection == 0) {
     // Random [ASVGF18 Sec. 3.3]: one of the stratum's pixels, uniformly, by a hash of (seed, frame, stratum).
-    const uint32_t h = hash_combine(
-        hash_combine(hash_combine(hash_u32(global_seed ^ kSelectionSalt), uint32_t(frame_index)), uint32_t(sx)),
-        uint32_t(sy));
+    const uint32_t salted = hash_u32(global_seed ^ kGradientSelectionSalt);  // trace/gradient_select_shared.h
+    const uint32_t h =
+        hash_combine(hash_combine(hash_combine(salted, uint32_t(frame_index)), uint32_t(sx)), uint32_t(sy));
     const int k = int(h % uint32_t(columns * rows));
     const size_t j = prev.vis.index(x0 + k % columns, y0 + k / columns);
     return eligible(j) ? uint32_t(j) : kInvalidId;
@@ -116,8 +113,9 @@ uint32_t select_gradient_source(const PreviousFrame& prev, int sx, int sy, const
   return best;
 }
 
-std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeometry& cur, const PreviousFrame& prev,
-                                             const GradientParams& params, uint32_t global_seed) {
+std::vector<std::optional<GradientSample>> gradient_candidates(const Scene& scene, const FrameGeometry& cur,
+                                                               const PreviousFrame& prev, const GradientParams& params,
+                                                               uint32_t global_seed) {
   const int width = cur.vis.width, height = cur.vis.height, s = params.stratum_size;
   if (prev.vis.width != width || prev.vis.height != height)
     throw Error("gradient samples: the previous frame is " + std::to_string(prev.vis.width) + "x" +
@@ -125,8 +123,8 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
                 std::to_string(width) + "x" + std::to_string(height));
   const int strata_x = (width + s - 1) / s, strata_y = (height + s - 1) / s;
 
-  // Steps 2-4, per stratum of frame i-1: pick j, forward project it, keep it where frame i sees it. Stratum rows
-  // run in parallel; each writes only its own slots.
+  // Steps 2-4 [ASVGF18 Sec. 3.3], per stratum of frame i-1: pick j, forward project it, keep it where frame i sees
+  // it. Stratum rows run in parallel; each writes only its own slots.
   std::vector<std::optional<GradientSample>> candidates(size_t(strata_x) * size_t(strata_y));
   parallel_rows(strata_y, [&](int sy) {
     for (int sx = 0; sx < strata_x; ++sx) {
@@ -143,19 +141,48 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
       candidates[size_t(sy) * size_t(strata_x) + size_t(sx)] = GradientSample{j, f.pixel, sample, f.depth};
     }
   });
+  return candidates;
+}
 
-  // Step 5: at most one per stratum of frame i, the smallest source index winning (deterministic; a GPU port's
-  // atomicMin on j gives the same).
-  std::vector<const GradientSample*> winner(candidates.size(), nullptr);
-  for (const std::optional<GradientSample>& c : candidates) {
-    if (!c) continue;
-    const GradientSample*& w = winner[size_t(c->target.y / s) * size_t(strata_x) + size_t(c->target.x / s)];
-    if (!w || c->source < w->source) w = &*c;
-  }
+std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeometry& cur, const PreviousFrame& prev,
+                                             const GradientParams& params, uint32_t global_seed) {
+  const std::vector<std::optional<GradientSample>> candidates =
+      gradient_candidates(scene, cur, prev, params, global_seed);
+  const int s = params.stratum_size;
+  const int strata_x = (cur.vis.width + s - 1) / s, strata_y = (cur.vis.height + s - 1) / s;
+  // Step 5: at most one per stratum of frame i, the smallest source index winning (gradient_winners).
   std::vector<GradientSample> samples;
-  for (const GradientSample* w : winner)
-    if (w) samples.push_back(*w);
+  for (const uint32_t k : gradient_winners(candidate_list(candidates), s, strata_x, strata_y))
+    if (k != kInvalidId) samples.push_back(*candidates[k]);
   return samples;
+}
+
+std::vector<GradientCandidate> candidate_list(const std::vector<std::optional<GradientSample>>& candidates) {
+  std::vector<GradientCandidate> list(candidates.size());
+  for (size_t k = 0; k < candidates.size(); ++k)
+    if (candidates[k]) list[k] = GradientCandidate{candidates[k]->source, candidates[k]->target};
+  return list;
+}
+
+std::vector<uint32_t> gradient_winners(const std::vector<GradientCandidate>& candidates, int s, int strata_x,
+                                       int strata_y) {
+  // [ASVGF18 Sec. 3.3]: the paper keeps whichever sample reaches a stratum first, a race on the GPU. Here the
+  // smallest j wins, the first in list order among equal j's: the same for any thread count, and what a GPU port
+  // gets from an atomicMin on j, then one on the candidate's index among those holding that j
+  // (trace/gradient_merge.comp).
+  std::vector<uint32_t> winner(size_t(strata_x) * size_t(strata_y), kInvalidId);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    const GradientCandidate& c = candidates[k];
+    if (c.source == kInvalidId) continue;
+    const int sx = c.target.x / s, sy = c.target.y / s;  // the target's stratum of frame i
+    if (c.target.x < 0 || c.target.y < 0 || sx >= strata_x || sy >= strata_y)
+      throw Error("gradient_winners: candidate " + std::to_string(k) + " lands at (" + std::to_string(c.target.x) +
+                  ", " + std::to_string(c.target.y) + "), outside the " + std::to_string(strata_x) + "x" +
+                  std::to_string(strata_y) + " strata of " + std::to_string(s) + " pixels");
+    uint32_t& w = winner[size_t(sy) * size_t(strata_x) + size_t(sx)];
+    if (w == kInvalidId || c.source < candidates[w].source) w = uint32_t(k);
+  }
+  return winner;
 }
 
 Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width, int height,

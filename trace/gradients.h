@@ -6,11 +6,11 @@
 // where G_{i-1,j} is the surface sample frame i-1 saw at pixel j, G~ the same point at frame i's pose, and xi its
 // seed. Frame i's render builds these samples [Sec. 3.3, Fig. 2]:
 //   1. rasterize frame i as usual;
-//   2. in each s x s stratum of frame i-1 pick one pixel j (select_gradient_source);
+//   2. in each s x s stratum of frame i-1 pick one pixel j (select_gradient_source; steps 2-4: gradient_candidates);
 //   3. forward project its surface sample into frame i (motion/forward_project.h);
 //   4. discard it when frame i's depth buffer hides it, it lands off screen or behind the camera, or it lands
 //      where frame i sees no surface or another instance;
-//   5. keep at most one per stratum of frame i: the one with the smallest source index j (gradient_samples);
+//   5. keep at most one per stratum of frame i: the one with the smallest source index j (gradient_winners);
 //   6. merge it into frame i's visibility buffer at jbar = floor(its screen position), with frame i-1's seed at
 //      j [Eq. 6]: the G-buffer and motion are resolved from the merged buffer, so they describe G~ at jbar and
 //      its motion points back to j;
@@ -25,8 +25,8 @@
 //   was itself a gradient sample, the stratum offers none. selection 1 picks instead the brightest eligible pixel
 //   (direct + indirect luminance), as Q2RTX does.
 // - Step 5: the paper lets GPU atomics pick whichever sample arrives first, which is not deterministic. Here the
-//   smallest source index j wins, which a GPU port reproduces with one atomicMin per stratum; the output is the
-//   same for any thread count.
+//   smallest source index j wins, which a GPU port reproduces with one atomicMin per stratum
+//   (trace/gradient_merge.comp); the output is the same for any thread count.
 // - A sample landing where frame i sees no surface crossed a silhouette: discarded, like an occluded one.
 // - A sample landing where frame i sees another instance is discarded too. The depth test alone (1 % tolerance,
 //   motion/forward_project.h) passes a surface just behind another: on falling-light, samples of the ceiling
@@ -53,6 +53,7 @@
 #include "trace/render_frame.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 // Every parameter of the gradient samples, declared once (filters/params.h):
@@ -101,12 +102,35 @@ struct GradientSample {
   float depth = 0.0f;      // its linear view depth at frame i
 };
 
+// A candidate for step 5: a source pixel j of frame i-1 that passed steps 2-4, and its target pixel jbar in frame i;
+// source kInvalidId where there is none (its stratum of frame i-1 offered none, or steps 3-4 discarded it).
+struct GradientCandidate {
+  uint32_t source = kInvalidId;  // j, as the linear index y W + x in frame i-1
+  glm::ivec2 target{0};          // jbar
+};
+
 // Step 2: the pixel of stratum (sx, sy) of frame i-1 that may become a gradient sample for frame `frame_index`,
 // as a linear index of frame i-1; kInvalidId when the stratum offers none.
 uint32_t select_gradient_source(const PreviousFrame& prev, int sx, int sy, const GradientParams& params,
                                 uint32_t global_seed, int frame_index);
 
-// Steps 2-5: frame i's gradient samples, at most one per stratum of frame i, ordered by target pixel. `cur` is
+// Steps 2-4, per stratum of frame i-1 (ceil(W / s) x ceil(H / s), row-major): its selected source j forward
+// projected into frame i and kept where frame i sees it, or none. `cur` is frame i's geometry as rasterized (not yet
+// merged); `prev` must have its size (throws rtdr::Error otherwise).
+std::vector<std::optional<GradientSample>> gradient_candidates(const Scene& scene, const FrameGeometry& cur,
+                                                               const PreviousFrame& prev, const GradientParams& params,
+                                                               uint32_t global_seed);
+// The (j, jbar) of each candidate, in the same order: source kInvalidId where there is none.
+std::vector<GradientCandidate> candidate_list(const std::vector<std::optional<GradientSample>>& candidates);
+
+// Step 5: per stratum of frame i (strata_x x strata_y strata of s x s pixels, row-major), the index in `candidates`
+// of the one that stays: of those whose target lies in the stratum, the one with the smallest source index j, the
+// first in list order among equal j's; kInvalidId where none lands. Throws rtdr::Error for a target outside the grid.
+std::vector<uint32_t> gradient_winners(const std::vector<GradientCandidate>& candidates, int stratum_size,
+                                       int strata_x, int strata_y);
+
+// Steps 2-5: frame i's gradient samples, at most one per stratum of frame i, ordered by target pixel's stratum:
+// gradient_winners of gradient_candidates. `cur` is
 // frame i's geometry as rasterized (not yet merged); `prev` must have its size.
 std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeometry& cur, const PreviousFrame& prev,
                                              const GradientParams& params, uint32_t global_seed);

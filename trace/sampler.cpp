@@ -39,13 +39,14 @@ uint32_t sobol_dim1(uint32_t index) {
 }
 
 // Laine-Karras style hash that only lets each bit be affected by the bits below it; applied to the
-// bit-reversed value it becomes a nested uniform (Owen) scramble (Burley 2020, Sec. 3 and Listing 2).
+// bit-reversed value it becomes a nested uniform (Owen) scramble (Burley 2020, Sec. 3 and Listing 2). Its
+// multipliers, and SamplePair's salts, are trace/sampler_shared.h's, shared with trace/sampler.glsl.
 uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
   x += seed;
-  x ^= x * 0x6c50b47cU;
-  x ^= x * 0xb82f1e52U;
-  x ^= x * 0xc7afe638U;
-  x ^= x * 0x8d22f6e6U;
+  x ^= x * RTDR_LAINE_KARRAS_MULTIPLIER_1;
+  x ^= x * RTDR_LAINE_KARRAS_MULTIPLIER_2;
+  x ^= x * RTDR_LAINE_KARRAS_MULTIPLIER_3;
+  x ^= x * RTDR_LAINE_KARRAS_MULTIPLIER_4;
   return x;
 }
 
@@ -62,9 +63,9 @@ float to_unit_float(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
 // scramble each of the two coordinates with a seed of its own (Burley 2020, Listing 3, two dimensions).
 SamplePair::SamplePair(uint32_t seed, uint32_t pair) {
   const uint32_t pair_seed = hash_combine(seed, pair);
-  shuffle_seed_ = hash_combine(pair_seed, 0xa511e9b3U);
-  x_seed_ = hash_combine(pair_seed, 0x63d83595U);
-  y_seed_ = hash_combine(pair_seed, 0x8c7a2f13U);
+  shuffle_seed_ = hash_combine(pair_seed, RTDR_SAMPLE_PAIR_SHUFFLE_SALT);
+  x_seed_ = hash_combine(pair_seed, RTDR_SAMPLE_PAIR_X_SALT);
+  y_seed_ = hash_combine(pair_seed, RTDR_SAMPLE_PAIR_Y_SALT);
 }
 
 glm::vec2 SamplePair::at(uint32_t index) const {

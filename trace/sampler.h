@@ -9,23 +9,28 @@
 // 0..N-1 under one seed and so gets a stratified, low-discrepancy set per pixel.
 #pragma once
 
+#include "trace/sampler_shared.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
 
 namespace rtdr {
 
-// A well-mixing 32-bit integer hash (the "lowbias32" finalizer of C. Wellons' hash prospector).
+// A well-mixing 32-bit integer hash (the "lowbias32" finalizer of C. Wellons' hash prospector). Its constants are
+// trace/sampler_shared.h's, shared with the GLSL mirror trace/sampler.glsl.
 inline uint32_t hash_u32(uint32_t x) {
   x ^= x >> 16;
-  x *= 0x7feb352dU;
+  x *= RTDR_HASH_MULTIPLIER_1;
   x ^= x >> 15;
-  x *= 0x846ca68bU;
+  x *= RTDR_HASH_MULTIPLIER_2;
   x ^= x >> 16;
   return x;
 }
 
-inline uint32_t hash_combine(uint32_t seed, uint32_t v) { return hash_u32(seed ^ (v + 0x9e3779b9U + (seed << 6) + (seed >> 2))); }
+inline uint32_t hash_combine(uint32_t seed, uint32_t v) {
+  return hash_u32(seed ^ (v + RTDR_HASH_COMBINE_CONSTANT + (seed << 6) + (seed >> 2)));
+}
 
 // The seed of pixel (x, y) in frame f, regenerated deterministically every frame.
 inline uint32_t pixel_seed(uint32_t global_seed, int frame, int x, int y) {

@@ -7,8 +7,12 @@
 // input frame, which also traces the shading term direct.shading (kTrmvShadingSamples light samples a pixel,
 // trace/shading.h). Target: at most 5 % (the paper's vectors cost under 0.23 ms on a GPU [TRMV21 Fig. 13], inside
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
+// With --backend vulkan (or cpu,vulkan), also the device time of the shadow vector's and the splat's Vulkan ports
+// (gpu/motion_shadow_gpu.h), the median of their dispatches' timestamps over the same runs, beside the CPU columns.
+#include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "gpu/motion_shadow_gpu.h"
 #include "motion/dual.h"
 #include "motion/glossy.h"
 #include "motion/shadow.h"
@@ -16,7 +20,9 @@
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 
 namespace rtdr {
 namespace {
@@ -30,12 +36,35 @@ double median_trace_loop_ms(const BenchOptions& o, const Scene& scene, const Fra
   return 1e3 * median(seconds);
 }
 
+// The median device time (ComputeBatch timestamps, the `ms` out-parameter) of `runs` calls of run(double* ms),
+// after `warmup` untimed ones (lavapipe compiles the shader on the first).
+template <class Run>
+double median_device_ms(int warmup, int runs, Run&& run) {
+  for (int i = 0; i < std::max(1, warmup); ++i) run(nullptr);
+  std::vector<double> ms;
+  for (int i = 0; i < runs; ++i) {
+    double t = 0.0;
+    run(&t);
+    ms.push_back(t);
+  }
+  return median(ms);
+}
+
 }  // namespace
 
 void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
-  std::printf("%-14s %9s %9s %10s %9s %9s %9s %9s %7s %11s %8s   (median of %d runs, %d threads)\n", "scene",
-              "size", "trace ms", "+shading", "shadow ms", "splat ms", "dual ms", "glossy ms", "share", "of +shading",
-              "valid", o.runs, thread_count());
+  const std::vector<std::string> backends = parse_backends(o.backend);
+  std::unique_ptr<VulkanContext> context;  // the ports' device, with --backend vulkan
+  if (std::find(backends.begin(), backends.end(), "vulkan") != backends.end()) {
+    context = std::make_unique<VulkanContext>();
+    std::printf("vulkan device %s (%s, %s-buffer inputs): shadow vk and splat vk are the ports' device times\n",
+                context->device_name().c_str(), context->memory_summary().c_str(),
+                shader_inputs_name(context->shader_inputs()));
+  }
+  std::printf("%-14s %9s %9s %10s %9s %9s", "scene", "size", "trace ms", "+shading", "shadow ms", "splat ms");
+  if (context) std::printf(" %9s %9s", "shadow vk", "splat vk");
+  std::printf(" %9s %9s %7s %11s %8s   (median of %d runs, %d threads)\n", "dual ms", "glossy ms", "share",
+              "of +shading", "valid", o.runs, thread_count());
   const RenderSettings settings;  // 1 spp, seed 0
   RenderSettings trmv_settings;   // and TRMV's input: with the shading term
   trmv_settings.trace.shading_samples = kTrmvShadingSamples;
@@ -52,6 +81,16 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     const double splat_ms = median_ms(o.warmup, o.runs, [&] {
       splat_shadow_motion(shadow, surface, g.vis.depth, size.width, size.height, kShadowSplatSize);
     });
+    // The Vulkan ports on the same frame and vectors (device time only: packing and readback are not counted).
+    double shadow_vulkan_ms = 0.0, splat_vulkan_ms = 0.0;
+    if (context) {
+      shadow_vulkan_ms =
+          median_device_ms(o.warmup, o.runs, [&](double* ms) { shadow_motion_vulkan(*context, g, frame, ms); });
+      splat_vulkan_ms = median_device_ms(o.warmup, o.runs, [&](double* ms) {
+        splat_shadow_motion_vulkan(*context, shadow, surface, g.vis.depth, size.width, size.height, kShadowSplatSize,
+                                   ms);
+      });
+    }
     const double dual_ms = median_ms(o.warmup, o.runs, [&] { dual_motion(scene, g, surface); });
     const double glossy_ms = median_ms(o.warmup, o.runs, [&] { glossy_motion(g, frame); });
     size_t valid = 0;
@@ -59,9 +98,11 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     const double vectors_ms = shadow_ms + splat_ms + dual_ms + glossy_ms;
     const double share = vectors_ms / trace_ms, valid_share = double(valid) / double(shadow.size());
     const double trmv_share = vectors_ms / trmv_trace_ms;
-    std::printf("%-14s %4dx%-4d %9.1f %9.1f %9.2f %9.2f %9.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", name.c_str(),
-                size.width, size.height, trace_ms, trmv_trace_ms, shadow_ms, splat_ms, dual_ms, glossy_ms,
-                100.0 * share, 100.0 * trmv_share, 100.0 * valid_share);
+    std::printf("%-14s %4dx%-4d %9.1f %9.1f %9.2f %9.2f", name.c_str(), size.width, size.height, trace_ms,
+                trmv_trace_ms, shadow_ms, splat_ms);
+    if (context) std::printf(" %9.3f %9.3f", shadow_vulkan_ms, splat_vulkan_ms);
+    std::printf(" %9.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", dual_ms, glossy_ms, 100.0 * share, 100.0 * trmv_share,
+                100.0 * valid_share);
     if (csv) {
       const std::string row = "motion," + name + ',' + std::to_string(size.width) + ',' +
                               std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';
@@ -74,6 +115,9 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
            << row << "glossy_ms," << glossy_ms << '\n'
            << row << "share," << share << '\n'
            << row << "valid_share," << valid_share << '\n';
+      if (context)
+        *csv << row << "shadow_vulkan_ms," << shadow_vulkan_ms << '\n'
+             << row << "splat_vulkan_ms," << splat_vulkan_ms << '\n';
     }
   }
 }

@@ -40,6 +40,7 @@
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/parallel.h"
+#include "motion/shadow_shared.h"  // kShadowParallelCosine, written once for the port (motion/shadow.comp)
 #include "raster/gbuffer_frame.h"
 #include "raster/view.h"
 #include "scenes/scene.h"
@@ -51,9 +52,6 @@
 #include <vector>
 
 namespace rtdr {
-
-// A line parallel to the plane within this cosine (about 6e-5 degrees) has no intersection worth using.
-inline constexpr float kShadowParallelCosine = 1e-6f;
 
 // T^{-1} of [TRMV21 Eq. 3] for one instance k: M_k(t_{i-1}) M_k(t_i)^{-1}, which carries a world point on it at
 // this frame's time to where it was in the previous frame, and the matrix that carries its normals (the inverse

@@ -22,15 +22,13 @@
 #pragma once
 
 #include "motion/shadow.h"
+#include "motion/shadow_splat_shared.h"  // kShadowSplatSize, kShadowSplatDepthRelative (shared with the port)
 
 #include <glm/glm.hpp>
 
 #include <vector>
 
 namespace rtdr {
-
-inline constexpr int kShadowSplatSize = 9;
-inline constexpr float kShadowSplatDepthRelative = 0.1f;
 
 struct SplatMotion {
   glm::vec2 motion{0.0f};

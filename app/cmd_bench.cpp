@@ -3,9 +3,10 @@
 //   --stage raster: visibility buffer, G-buffer resolve and motion back-projection (bench_raster.cpp)
 //   --stage trace:  the path tracer at 1 spp, its rays per second against a bare Embree loop over the same
 //                   rays, and the memory of a frame's planes (bench_trace.cpp)
-//   --stage gradients: a 1-spp frame with and without A-SVGF's gradient samples (bench_gradients.cpp)
-//   --stage motion: TRMV's motion vectors (shadow, splat, dual, glossy) beside a 1-spp frame's tracing
-//                   (bench_motion.cpp)
+//   --stage gradients: a 1-spp frame with and without A-SVGF's gradient samples, and with --backend vulkan the
+//                   ports of their selection and merge (bench_gradients.cpp)
+//   --stage motion: TRMV's motion vectors (shadow, splat, dual, glossy) beside a 1-spp frame's tracing, and with
+//                   --backend vulkan their ports (bench_motion.cpp)
 //   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
 //                   default stage when --backend is given
 #include "app/bench.h"
@@ -72,7 +73,9 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 1000))->capture_default_str();
   sub->add_option("--csv", o->csv, "also write the timings to this CSV file");
   sub->add_option("--method", o->method, "the method --stage filter times (see rtdr filter)")->capture_default_str();
-  sub->add_option("--backend", o->backend, "--stage filter: cpu, vulkan, or cpu,vulkan to compare them")
+  sub->add_option("--backend", o->backend,
+                  "--stage filter, gradients, motion: cpu, vulkan, or cpu,vulkan to compare them (gradients and "
+                  "motion: the CPU columns always, the ports' columns with vulkan)")
       ->capture_default_str();
   sub->add_option("--submits", o->submits,
                   "--backend vulkan: submit each frame's work this many times back to back and time the last, so a "

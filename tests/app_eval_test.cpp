@@ -131,3 +131,30 @@ TEST_CASE("rtdr eval runs svgf on the shader ports beside the golden passes, wit
     CHECK(rows[3 + size_t(f)].at("rmse") != rows[6 + size_t(f)].at("rmse"));
   }
 }
+
+// asvgf and trmv on their ports (backend=vulkan, gpu/svgf_vulkan.h and gpu/trmv_vulkan.h), beside the golden passes
+// on the same input: each port's RMSE within the guard its pipeline test holds its colour to (tests/gpu_svgf_test.cpp,
+// tests/gpu_trmv_vulkan_test.cpp: 2e-3 for asvgf with fp32 records, 5e-3 for trmv), relative as above.
+TEST_CASE("rtdr eval runs asvgf and trmv on the shader ports beside the golden passes") {
+  rtdr::test::skip_without_vulkan();
+  const fs::path dir = scratch("ports_asvgf_trmv");
+  const RunResult r = run_rtdr("eval --scene fence --methods asvgf,asvgf:backend=vulkan:illumination=fp32,trmv,"
+                               "trmv:backend=vulkan --frames 0-2 --size 48x27 --ref-spp 4 --cache " +
+                                   (dir / "cache").string() + " --out " + (dir / "out").string(),
+                               dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto rows = read_metrics(dir / "out" / "metrics.csv");
+  REQUIRE(rows.size() == 12);  // 4 methods x 3 frames, method by method
+  for (int f = 0; f < 3; ++f)
+    for (const auto& [golden_index, guard] : {std::pair<size_t, double>{0, 2e-3}, {2, 5e-3}}) {
+      const auto& golden = rows[golden_index * 3 + size_t(f)];
+      const auto& port = rows[(golden_index + 1) * 3 + size_t(f)];
+      INFO(golden.at("method") << " frame " << f << " " << port.at("params"));
+      REQUIRE(golden.at("method") == port.at("method"));
+      CHECK(std::stod(port.at("ms_transfer")) > 0.0);
+      const double rmse = std::stod(golden.at("rmse")), rmse_port = std::stod(port.at("rmse"));
+      CHECK(rmse_port != 0.0);
+      CHECK(std::abs(rmse_port - rmse) <= guard * (rmse + 1e-2));
+    }
+}

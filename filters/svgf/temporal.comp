@@ -210,7 +210,7 @@ TemporalPixel accumulate(vec3 C, float l, HistorySample h, float lambda) {
   // alpha_eff = max(alpha, 1/n): a running mean while 1/n > alpha, then the paper's EMA (a deviation, temporal.h).
   const float alpha = max(adaptive_alpha(frame.alpha, lambda), 1.0 / n);
   const float alpha_mu = max(adaptive_alpha(frame.alpha_moments, lambda), 1.0 / n);
-  // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation]
+  // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation], A-SVGF's [ASVGF18 Eq. 1]
   precise vec3 color = alpha * C + (1.0 - alpha) * h.color;
   // mu1'_i = alpha_mu l + (1 - alpha_mu) mu1'_{i-1}  [SVGF17 Sec. 4.2, accumulated like the colour]
   precise float moment1 = alpha_mu * l + (1.0 - alpha_mu) * h.moment1;

@@ -11,7 +11,7 @@
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
-#include "gpu/svgf_vulkan.h"
+#include "gpu/vulkan_method.h"
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 #include "trace/render_frame.h"
@@ -32,7 +32,7 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
                                           std::vector<std::pair<std::string, double>>* commands) {
   std::map<std::string, std::vector<double>> times;
   std::vector<std::pair<std::string, std::vector<double>>> command_times;
-  SvgfVulkan* gpu = dynamic_cast<SvgfVulkan*>(&method);
+  VulkanMethod* gpu = dynamic_cast<VulkanMethod*>(&method);
   if (gpu) gpu->set_submits(submits);
   for (size_t f = 0; f < frames.size(); ++f) {
     method.filter(frames[f]);

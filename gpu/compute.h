@@ -140,7 +140,8 @@ class ComputeBatch {
   // Submits what was recorded, waits, and makes the writes visible to the host; then starts a new batch. With
   // submits > 1 the same commands run that many times back to back, each after the last has finished, and times()
   // are the last run's: for timing a GPU at its working clock. Only for commands whose reruns give the same
-  // result (SvgfVulkan's frame does: it writes no buffer it reads).
+  // result: a frame of SvgfVulkan or TrmvVulkan reads only its inputs, the last frame's histories and what the
+  // batch wrote before, and overwrites none of them later in the batch.
   void run(int submits = 1);
   // Each dispatch of the last run(): its label and device time in milliseconds (empty without timestamps).
   const std::vector<std::pair<std::string, double>>& times() const { return times_; }

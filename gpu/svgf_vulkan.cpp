@@ -143,10 +143,10 @@ struct SvgfVulkan::GradientBuffers {
 };
 
 SvgfVulkan::SvgfVulkan(VulkanContext& context, const SvgfOptions& options)
-    : context_(context),
+    : VulkanMethod(context, commands_per_frame(options) + Dump::commands(options)),
+      context_(context),
       options_(options),
-      shaders_(context),
-      batch_(context, commands_per_frame(options) + Dump::commands(options)) {
+      shaders_(context) {
   validate(options_.svgf);
   validate(options_.asvgf);
   validate(options_.tonemap);

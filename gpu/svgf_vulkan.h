@@ -23,15 +23,15 @@
 // not probed: that stays with the golden SvgfFilter (--backend cpu).
 #pragma once
 
-#include "filters/method.h"
 #include "filters/svgf/svgf.h"
 #include "gpu/svgf_shaders.h"
+#include "gpu/vulkan_method.h"
 
 #include <memory>
 
 namespace rtdr {
 
-class SvgfVulkan : public Method {
+class SvgfVulkan : public VulkanMethod {
  public:
   // `options` must be the "svgf" or "asvgf" configuration's stages (temporal, a-trous, TAA, with or without the
   // adaptive alpha); its parameters may be any.
@@ -44,11 +44,6 @@ class SvgfVulkan : public Method {
   std::vector<std::string> probe_passes() const override { return {}; }
   InputChannels inputs() const override { return svgf_input_channels(options_); }
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
-  // The last frame's commands one by one, in order, with their device times in ms (empty without timestamps):
-  // what pass_times() sums per pass, e.g. each a-trous level on its own.
-  const std::vector<std::pair<std::string, double>>& command_times() const { return batch_.times(); }
-  // Each frame's batch is submitted this many times (ComputeBatch::run; rtdr bench --submits). Default 1.
-  void set_submits(int submits) { submits_ = submits; }
 
  private:
   struct Buffers;          // every device plane, made for one frame size
@@ -60,12 +55,10 @@ class SvgfVulkan : public Method {
   VulkanContext& context_;
   SvgfOptions options_;
   SvgfShaders shaders_;
-  ComputeBatch batch_;
   std::unique_ptr<Buffers> buffers_;
   std::unique_ptr<GradientBuffers> gradients_;
   std::unique_ptr<Dump> dump_;
   int frames_ = 0;  // frames since the last reset: 0 means no history
-  int submits_ = 1;
 };
 
 }  // namespace rtdr

@@ -79,10 +79,10 @@ struct TrmvVulkan::Buffers {
 };
 
 TrmvVulkan::TrmvVulkan(VulkanContext& context, const MethodParams& params)
-    : context_(context),
+    : VulkanMethod(context, kCommandsPerFrame),
+      context_(context),
       params_(params),
       shaders_(context),
-      batch_(context, kCommandsPerFrame),
       cone_layout_(make_cone_layout(params.trmv.cone_half_angle)) {
   validate(params_.trmv);
   validate(params_.svgf);
@@ -233,7 +233,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   record_component(kVisibility, shadow ? b.falloff.get() : nullptr);
   record_component(kDiffuse, nullptr);
   record_component(kGlossy, nullptr);
-  batch_.run();
+  batch_.run(submits_);
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;
 

@@ -25,10 +25,10 @@
 // TrmvFilter (--backend cpu). Buffers are made for the first frame's size; a later frame of another size throws.
 #pragma once
 
-#include "filters/method.h"
 #include "filters/trmv/cones.h"
 #include "filters/trmv/reshade.h"
 #include "gpu/svgf_shaders.h"
+#include "gpu/vulkan_method.h"
 
 #include <memory>
 #include <string>
@@ -36,7 +36,7 @@
 
 namespace rtdr {
 
-class TrmvVulkan : public Method {
+class TrmvVulkan : public VulkanMethod {
  public:
   TrmvVulkan(VulkanContext& context, const MethodParams& params);
   ~TrmvVulkan() override;
@@ -58,7 +58,6 @@ class TrmvVulkan : public Method {
   VulkanContext& context_;
   MethodParams params_;
   SvgfShaders shaders_;
-  ComputeBatch batch_;
   std::unique_ptr<Buffers> buffers_;
   ConeLayout cone_layout_;       // the re-shading's cones (cones.h)
   TrmvConeHistory cones_;        // this frame's cones: next frame's history

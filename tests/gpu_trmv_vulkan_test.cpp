@@ -135,6 +135,21 @@ TEST_CASE("the Vulkan TRMV follows the golden TRMV with the traditional vector a
   check_no_validation_messages(*context);
 }
 
+TEST_CASE("a TRMV frame's batch submitted again gives the same frame (rtdr bench --submits)") {
+  const auto context = validated_context();
+  const Scene scene = load_scene("fence");
+  RenderSettings settings;
+  settings.trace.shading_samples = 4;
+  const MethodParams params = method_defaults("trmv");
+  TrmvVulkan once(*context, params), thrice(*context, params);
+  thrice.set_submits(3);
+  for (int f = 0; f < 3; ++f) {
+    const Frame in = render_frame(scene, f, 32, 18, settings);
+    CHECK(rgb_plane(once.filter(in, nullptr), "color").data == rgb_plane(thrice.filter(in, nullptr), "color").data);
+  }
+  check_no_validation_messages(*context);
+}
+
 TEST_CASE("the Vulkan TRMV's dump holds the golden dump's layers and changes no result") {
   const auto context = validated_context();
   const Scene scene = load_scene("occlusion");

@@ -12,6 +12,7 @@
 // depth buffer shows to be occluded are discarded by the caller [ASVGF18 Sec. 3.3].
 #pragma once
 
+#include "motion/forward_project_shared.h"
 #include "raster/view.h"
 #include "raster/visibility.h"
 #include "scenes/scene.h"
@@ -20,12 +21,8 @@
 
 namespace rtdr {
 
-// Relative depth tolerance of the occlusion test: a sample at depth z is occluded when the current depth
-// buffer at its pixel is below z (1 - tolerance). The sample is up to ~0.7 pixel from that pixel's centre,
-// where the surface's depth differs from z by about z * 0.7 * pixel angle * tan(slant). At 720p with a 45
-// degree field of view (pixel angle ~1.1e-3 rad), 1 % absorbs that for surfaces slanted up to ~85 degrees
-// from the view ray, while any occluder nearer than 99 % of the sample's depth still hides it.
-inline constexpr float kForwardProjectionDepthTolerance = 0.01f;
+// kForwardProjectionDepthTolerance, the occlusion test's relative depth tolerance (1 %, and why): written once,
+// for the C++ and the shaders, in motion/forward_project_shared.h.
 
 struct ForwardProjection {
   bool on_screen = false;   // in front of the near plane and inside [0, width) x [0, height)

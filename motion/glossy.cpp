@@ -61,7 +61,7 @@ bool footprint_axes(const MirrorImage& m, float sigma_theta, const View& view, g
   if (!(sigma_theta < axis_to_plane)) return false;
   // t1: the plane of incidence's trace on the mirror (the incidence direction with its normal part removed).
   glm::vec3 t1 = m.incidence - glm::dot(m.normal, m.incidence) * m.normal;
-  if (glm::length(t1) < 1e-6f) {  // normal incidence: the ellipse is a circle, any tangent will do
+  if (glm::length(t1) < kGlossyNormalIncidence) {  // normal incidence: the ellipse is a circle, any tangent will do
     glm::vec3 unused;
     orthonormal_basis(m.normal, t1, unused);
   }

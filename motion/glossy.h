@@ -82,6 +82,7 @@
 #pragma once
 
 #include "core/frame.h"
+#include "motion/glossy_shared.h"
 #include "motion/shadow.h"
 #include "raster/gbuffer_frame.h"
 #include "raster/view.h"
@@ -93,14 +94,8 @@
 
 namespace rtdr {
 
-// A line eye -> v within this cosine of the plane (about 6e-5 degrees) has no specular point worth using.
-inline constexpr float kGlossyParallelCosine = 1e-6f;
-// tan theta_h of the GGX half-vector cone holding 68 % of D(h) cos theta_h, per unit alpha: sqrt(0.68 / 0.32).
-inline constexpr float kGgxLobeTanPerAlpha = 1.4577380f;
-// The tag that gives Eq. 5's two normal numbers their own sequence: hash_combine(rng.seed, kGlossyStream) is its
-// seed, as trace/shading.h's kShadingStream is the shading term's. Any fixed value serves; this one is the ASCII
-// bytes of "glos".
-inline constexpr uint32_t kGlossyStream = 0x676C6F73U;
+// kGlossyParallelCosine, kGgxLobeTanPerAlpha, kGlossyStream and kGlossyNormalIncidence: written once, for the C++
+// and the shader, in motion/glossy_shared.h.
 
 // One pixel's primary BSDF ray as the path tracer recorded it (the path.* layers), and its reflector.
 struct GlossyRay {

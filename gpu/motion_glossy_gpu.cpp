@@ -1,0 +1,118 @@
+// The Vulkan port of TRMV's glossy motion vector. See motion_glossy_gpu.h; the shader is motion/glossy.comp.
+#include "gpu/motion_glossy_gpu.h"
+
+#include "core/error.h"
+#include "filters/image.h"
+#include "gpu/compute.h"
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+#include "motion/glossy_shared.h"
+#include "raster/view_shared.h"
+#include "trace/brdf.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <numbers>
+#include <string>
+
+namespace rtdr {
+
+namespace {
+
+static_assert(kGlossyPi == std::numbers::pi_v<float>, "the shader's pi is the golden pass's float");
+
+// T^{-1} of one instance as its record: the columns of to_previous, then those of normal_to_previous (w = 0).
+ShadowInstanceMotion instance_record(const InstanceMotion& m) {
+  ShadowInstanceMotion r{};
+  for (int c = 0; c < 4; ++c) r.to_previous[c] = m.to_previous[c];
+  for (int c = 0; c < 3; ++c) r.normal_to_previous[c] = glm::vec4(m.normal_to_previous[c], 0.0f);
+  return r;
+}
+
+// A buffer holding `records` (at least one record's room: a GpuBuffer is never empty), uploaded.
+template <class Record>
+std::unique_ptr<GpuBuffer> record_buffer(VulkanContext& context, const std::vector<Record>& records) {
+  static_assert(sizeof(Record) % sizeof(float) == 0, "records of whole floats");
+  constexpr size_t floats = sizeof(Record) / sizeof(float);
+  auto buffer = std::make_unique<GpuBuffer>(context, floats * std::max<size_t>(records.size(), 1));
+  std::vector<float> values(buffer->floats(), 0.0f);
+  std::memcpy(values.data(), records.data(), records.size() * sizeof(Record));
+  buffer->upload(values);
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<GlossyMotion> glossy_motion_vulkan(VulkanContext& context, const FrameGeometry& g, const Frame& frame,
+                                               double* ms) {
+  const GlossyRayLayers check(frame);  // throws rtdr::Error naming a missing channel, as glossy_motion does
+  const int w = g.vis.width, h = g.vis.height;
+  if (frame.width() != w || frame.height() != h)  // motion_per_pixel's check, with its message
+    throw Error("glossy_motion: a " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
+                " frame for a " + std::to_string(w) + "x" + std::to_string(h) + " geometry");
+  if (w == 0 || h == 0) return {};
+
+  // GlossyRayLayers' planes: (s_i, roughness), n(s_i) and h_i as (x, y, z, w) records, the ids and the seed.
+  RgbPlane position = xyz_plane(frame, "position");
+  const auto reflector = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             normal = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             hit = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             reflector_id = plane_buffer(context, w, h, TexelFormat::R32UI),
+             hit_id = plane_buffer(context, w, h, TexelFormat::R32UI),
+             seed = plane_buffer(context, w, h, TexelFormat::R32UI);
+  pack_rgb(position, *reflector);
+  const FloatPlane& roughness = frame.float_channel("material.roughness");
+  for (size_t i = 0; i < roughness.data.size(); ++i) reflector->data()[4 * i + 3] = roughness.data[i];
+  pack_rgb(xyz_plane(frame, "geonormal"), *normal);
+  pack_rgb(xyz_plane(frame, "path.secondary"), *hit);
+  pack_ids(frame.uint_channel("id.instance"), *reflector_id);
+  pack_ids(frame.uint_channel("path.secondary.instance"), *hit_id);
+  pack_ids(frame.uint_channel("rng.seed"), *seed);
+  // T^{-1} per instance, computed once on the host by the golden instance_to_previous; the two Views.
+  std::vector<ShadowInstanceMotion> instances;
+  for (const InstanceMotion& m : instance_to_previous(g.pose, g.prev_pose)) instances.push_back(instance_record(m));
+  const auto instance_buffer = record_buffer(context, instances);
+  const auto views = record_buffer(context, std::vector<ViewRecord>{view_record(g.view), view_record(g.prev_view)});
+  // One GlossyMotionRecord per pixel.
+  const auto result = std::make_unique<GpuBuffer>(context, size_t(w) * size_t(h) * (sizeof(GlossyMotionRecord) / 4));
+
+  // The pipeline, with the SVGF ports' workgroup shape on this device (filters/svgf/planes_shared.h) as
+  // specialization constants 0 and 1.
+  static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1, "constant_id 0, 1 in order");
+  const uint32_t group_width = context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX;
+  const uint32_t group_height = context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY;
+  const ComputePipeline pipeline(context, load_port(context, "motion_glossy"),
+                                 port_bindings(context, kGlossyMotionTexelBindings, kGlossyMotionStorageBindings),
+                                 sizeof(GlossyMotionPush), {int32_t(group_width), int32_t(group_height)});
+  const GlossyMotionPush push{.eye = glm::vec4(g.view.eye, 0.0f),
+                              .prev_eye = glm::vec4(g.prev_view.eye, 0.0f),
+                              .width = uint32_t(w),
+                              .height = uint32_t(h),
+                              .instance_count = uint32_t(instances.size()),
+                              .min_ggx_alpha = kMinGgxAlpha};
+  ComputeBatch batch(context, 1);
+  batch.dispatch(pipeline,
+                 {reflector.get(), normal.get(), hit.get(), reflector_id.get(), hit_id.get(), seed.get(),
+                  instance_buffer.get(), views.get(), result.get()},
+                 &push, group_count(uint32_t(w), group_width), group_count(uint32_t(h), group_height),
+                 "motion_glossy");
+  batch.run();
+  batch.total_time(ms);
+
+  std::vector<GlossyMotionRecord> records(size_t(w) * size_t(h));
+  std::memcpy(records.data(), result->data(), records.size() * sizeof(GlossyMotionRecord));
+  std::vector<GlossyMotion> out(records.size());
+  for (size_t i = 0; i < records.size(); ++i) {
+    const GlossyMotionRecord& r = records[i];
+    if (r.valid == 0u) continue;  // (0, 0), not valid, as glossy_motion_pixel leaves it
+    GlossyMotion& m = out[i];
+    m.mu = r.mu, m.motion = r.motion, m.valid = true;
+    m.axes = glm::mat2(r.a1, r.a2);
+    m.Sigma = m.axes * glm::transpose(m.axes);  // a1 a1^T + a2 a2^T, as glossy_motion_pixel
+  }
+  return out;
+}
+
+}  // namespace rtdr

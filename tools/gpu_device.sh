@@ -6,11 +6,14 @@
 #     info     the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
 #     test     a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
 #     compare  rtdr compare on 10 frames of pillars at 320x180, every buffer of the ports against the golden
-#              passes, with the GPU's default fp16 illumination records and with fp32 records
+#              passes, with the GPU's default fp16 illumination records and with fp32 records; then asvgf (pillars
+#              with gradient samples) and trmv (fence with the shading term) likewise
 #     bench    rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
 #              inputs, fp16 illumination records), then the ports alone with fp32 records
 #              (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
-#              10 times back to back and the last timed, so that the GPU runs at its working clock (--submits)
+#              10 times back to back and the last timed, so that the GPU runs at its working clock (--submits);
+#              then asvgf and trmv on their ports at 1920x1080 (docs/performance.md's A-SVGF and TRMV rows), and
+#              the render side's ports (--stage gradients, --stage motion) at 1920x1080
 #     options  the ports alone at 1920x1080 in the cheaper configurations whose accuracy docs/performance.md
 #              measures ("What 0.5 ms would cost"): 4 and 3 a-trous levels, the 3x3 kernel, the 3x3 kernel with 4
 #              levels
@@ -95,6 +98,15 @@ if wants compare; then
       >"$LOGS/compare_$records.txt" 2>&1 || status=1
     grep -E "^(svgf|color|display)" "$LOGS/compare_$records.txt"
   done
+  "$BUILD/app/rtdr" render --scene pillars --frames 0-9 --size 320x180 --gradients --out "$frames-asvgf" \
+    >/dev/null || status=1
+  "$BUILD/app/rtdr" render --scene fence --frames 0-9 --size 320x180 --shading-samples 64 --out "$frames-trmv" \
+    >/dev/null || status=1
+  for method in asvgf trmv; do
+    "$BUILD/app/rtdr" compare --method $method --in "$frames-$method" --csv "$LOGS/compare_$method.csv" \
+      >"$LOGS/compare_$method.txt" 2>&1 || status=1
+    grep -E "^($method|color|display)" "$LOGS/compare_$method.txt"
+  done
   pack
 fi
 
@@ -116,6 +128,16 @@ if wants bench; then
       env "$variant" "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
         --warmup 5 --submits 10 --csv "$LOGS/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
     done
+  done
+  # A-SVGF's whole frame and TRMV's filter on the ports (the golden passes would take minutes at 1080p).
+  for method_scene in asvgf:pillars trmv:fence; do
+    "$BUILD/app/rtdr" bench --backend vulkan --method "${method_scene%%:*}" --scenes "${method_scene#*:}" \
+      --size 1920x1080 --runs 20 --warmup 5 --submits 10 --csv "$LOGS/bench_${method_scene%%:*}.csv" 2>&1 |
+      tee -a "$LOGS/bench.txt" || status=1
+  done
+  for stage in gradients motion; do
+    "$BUILD/app/rtdr" bench --stage $stage --backend cpu,vulkan --scenes pillars,fence --size 1920x1080 --runs 5 \
+      --warmup 1 --csv "$LOGS/bench_$stage.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
   done
   pack
 fi

@@ -7,11 +7,16 @@
 // input frame, which also traces the shading term direct.shading (kTrmvShadingSamples light samples a pixel,
 // trace/shading.h). Target: at most 5 % (the paper's vectors cost under 0.23 ms on a GPU [TRMV21 Fig. 13], inside
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
-// With --backend vulkan (or cpu,vulkan), also the device time of the shadow vector's and the splat's Vulkan ports
-// (gpu/motion_shadow_gpu.h), the median of their dispatches' timestamps over the same runs, beside the CPU columns.
+// With --backend vulkan (or cpu,vulkan), also the device time of the Vulkan ports of the shadow vector, its splat
+// (gpu/motion_shadow_gpu.h), the dual vector (gpu/motion_dual_gpu.h) and the glossy vector (gpu/motion_glossy_gpu.h),
+// the median of their dispatches' timestamps over the same runs, beside the CPU columns. A vk column is the shader's
+// dispatch alone: not the packing, upload or readback, nor the dual port's host part (the previous frame's
+// rasterization and every sample's object point, which the dual ms column includes).
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "gpu/motion_dual_gpu.h"
+#include "gpu/motion_glossy_gpu.h"
 #include "gpu/motion_shadow_gpu.h"
 #include "motion/dual.h"
 #include "motion/glossy.h"
@@ -57,14 +62,16 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
   std::unique_ptr<VulkanContext> context;  // the ports' device, with --backend vulkan
   if (std::find(backends.begin(), backends.end(), "vulkan") != backends.end()) {
     context = std::make_unique<VulkanContext>();
-    std::printf("vulkan device %s (%s, %s-buffer inputs): shadow vk and splat vk are the ports' device times\n",
+    std::printf("vulkan device %s (%s, %s-buffer inputs): the vk columns are the ports' device times\n",
                 context->device_name().c_str(), context->memory_summary().c_str(),
                 shader_inputs_name(context->shader_inputs()));
   }
   std::printf("%-14s %9s %9s %10s %9s %9s", "scene", "size", "trace ms", "+shading", "shadow ms", "splat ms");
   if (context) std::printf(" %9s %9s", "shadow vk", "splat vk");
-  std::printf(" %9s %9s %7s %11s %8s   (median of %d runs, %d threads)\n", "dual ms", "glossy ms", "share",
-              "of +shading", "valid", o.runs, thread_count());
+  std::printf(" %9s %9s", "dual ms", "glossy ms");
+  if (context) std::printf(" %9s %9s", "dual vk", "glossy vk");
+  std::printf(" %7s %11s %8s   (median of %d runs, %d threads)\n", "share", "of +shading", "valid", o.runs,
+              thread_count());
   const RenderSettings settings;  // 1 spp, seed 0
   RenderSettings trmv_settings;   // and TRMV's input: with the shading term
   trmv_settings.trace.shading_samples = kTrmvShadingSamples;
@@ -93,6 +100,14 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     }
     const double dual_ms = median_ms(o.warmup, o.runs, [&] { dual_motion(scene, g, surface); });
     const double glossy_ms = median_ms(o.warmup, o.runs, [&] { glossy_motion(g, frame); });
+    // Their ports' device time (the dual port's host part, previous_visibility and object_point, not counted).
+    double dual_vulkan_ms = 0.0, glossy_vulkan_ms = 0.0;
+    if (context) {
+      dual_vulkan_ms = median_device_ms(o.warmup, o.runs,
+                                        [&](double* ms) { dual_motion_vulkan(*context, scene, g, surface, ms); });
+      glossy_vulkan_ms =
+          median_device_ms(o.warmup, o.runs, [&](double* ms) { glossy_motion_vulkan(*context, g, frame, ms); });
+    }
     size_t valid = 0;
     for (const ShadowMotion& m : shadow) valid += m.valid;
     const double vectors_ms = shadow_ms + splat_ms + dual_ms + glossy_ms;
@@ -101,8 +116,9 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
     std::printf("%-14s %4dx%-4d %9.1f %9.1f %9.2f %9.2f", name.c_str(), size.width, size.height, trace_ms,
                 trmv_trace_ms, shadow_ms, splat_ms);
     if (context) std::printf(" %9.3f %9.3f", shadow_vulkan_ms, splat_vulkan_ms);
-    std::printf(" %9.2f %9.2f %6.1f%% %10.1f%% %7.1f%%\n", dual_ms, glossy_ms, 100.0 * share, 100.0 * trmv_share,
-                100.0 * valid_share);
+    std::printf(" %9.2f %9.2f", dual_ms, glossy_ms);
+    if (context) std::printf(" %9.3f %9.3f", dual_vulkan_ms, glossy_vulkan_ms);
+    std::printf(" %6.1f%% %10.1f%% %7.1f%%\n", 100.0 * share, 100.0 * trmv_share, 100.0 * valid_share);
     if (csv) {
       const std::string row = "motion," + name + ',' + std::to_string(size.width) + ',' +
                               std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';
@@ -117,7 +133,9 @@ void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
            << row << "valid_share," << valid_share << '\n';
       if (context)
         *csv << row << "shadow_vulkan_ms," << shadow_vulkan_ms << '\n'
-             << row << "splat_vulkan_ms," << splat_vulkan_ms << '\n';
+             << row << "splat_vulkan_ms," << splat_vulkan_ms << '\n'
+             << row << "dual_vulkan_ms," << dual_vulkan_ms << '\n'
+             << row << "glossy_vulkan_ms," << glossy_vulkan_ms << '\n';
     }
   }
 }

@@ -3,16 +3,12 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "gpu/compute.h"
+#include "gpu/motion_port.h"
 #include "gpu/svgf_planes.h"
-#include "gpu/svgf_shaders.h"
 #include "motion/dual_shared.h"
-#include "raster/view_shared.h"
 
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <string>
 
 namespace rtdr {
@@ -45,18 +41,6 @@ void pack_object_points(const Scene& scene, const VisibilityBuffer& vis, bool wi
 // A visibility buffer's instance ids as R32UI texels.
 void pack_instances(const VisibilityBuffer& vis, GpuBuffer& out) {
   std::memcpy(out.data(), vis.instance.data(), vis.instance.size() * sizeof(uint32_t));
-}
-
-// A buffer holding `records` (at least one record's room: a GpuBuffer is never empty), uploaded.
-template <class Record>
-std::unique_ptr<GpuBuffer> record_buffer(VulkanContext& context, const std::vector<Record>& records) {
-  static_assert(sizeof(Record) % sizeof(float) == 0, "records of whole floats");
-  constexpr size_t floats = sizeof(Record) / sizeof(float);
-  auto buffer = std::make_unique<GpuBuffer>(context, floats * std::max<size_t>(records.size(), 1));
-  std::vector<float> values(buffer->floats(), 0.0f);
-  std::memcpy(values.data(), records.data(), records.size() * sizeof(Record));
-  buffer->upload(values);
-  return buffer;
 }
 
 // Each instance's instance_to_world at both poses, as columns.
@@ -100,38 +84,24 @@ std::vector<DualMotion> dual_motion_vulkan(VulkanContext& context, const Scene& 
   }
   const std::vector<DualInstance> instances = instance_records(g.pose, g.prev_pose);
   const auto instance_buffer = record_buffer(context, instances);
-  const auto views = record_buffer(context, std::vector<ViewRecord>{view_record(g.view), view_record(g.prev_view)});
+  const auto views = view_buffer(context, g);
   // (x^O - x_i, disoccluded, 0) per pixel.
   const auto result = plane_buffer(context, w, h, TexelFormat::RGBA32F);
 
-  // The pipeline, with the SVGF ports' workgroup shape on this device (filters/svgf/planes_shared.h) as
-  // specialization constants 0 and 1.
-  static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1, "constant_id 0, 1 in order");
-  const uint32_t group_width = context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX;
-  const uint32_t group_height = context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY;
-  const ComputePipeline pipeline(context, load_port(context, "motion_dual"),
-                                 port_bindings(context, kDualMotionTexelBindings, kDualMotionStorageBindings),
-                                 sizeof(DualMotionPush), {int32_t(group_width), int32_t(group_height)});
+  const MotionPort port(context, "motion_dual", kDualMotionTexelBindings, kDualMotionStorageBindings,
+                        sizeof(DualMotionPush));
   const DualMotionPush push{.width = uint32_t(w),
                             .height = uint32_t(h),
                             .prev_width = uint32_t(pw),
                             .prev_height = uint32_t(ph),
                             .instance_count = uint32_t(instances.size()),
                             .unused = {0u, 0u, 0u}};
-  ComputeBatch batch(context, 1);
-  batch.dispatch(pipeline,
-                 {point.get(), instance.get(), motion.get(), prev_point_depth.get(), prev_instance.get(),
-                  instance_buffer.get(), views.get(), result.get()},
-                 &push, group_count(uint32_t(w), group_width), group_count(uint32_t(h), group_height),
-                 "motion_dual");
-  batch.run();
-  batch.total_time(ms);
+  port.run(context,
+           {point.get(), instance.get(), motion.get(), prev_point_depth.get(), prev_instance.get(),
+            instance_buffer.get(), views.get(), result.get()},
+           &push, w, h, ms);
 
-  const float* records = result->data();
-  std::vector<DualMotion> out(pixels);
-  for (size_t i = 0; i < pixels; ++i)
-    out[i] = {glm::vec2(records[4 * i], records[4 * i + 1]), records[4 * i + 2] != 0.0f};
-  return out;
+  return unpack_records<DualMotion>(*result, w, h);
 }
 
 }  // namespace rtdr

@@ -3,14 +3,11 @@
 
 #include "core/error.h"
 #include "filters/image.h"
-#include "gpu/compute.h"
+#include "gpu/motion_port.h"
 #include "gpu/svgf_planes.h"
-#include "gpu/svgf_shaders.h"
 #include "motion/glossy_shared.h"
-#include "raster/view_shared.h"
 #include "trace/brdf.h"
 
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -19,31 +16,7 @@
 
 namespace rtdr {
 
-namespace {
-
 static_assert(kGlossyPi == std::numbers::pi_v<float>, "the shader's pi is the golden pass's float");
-
-// T^{-1} of one instance as its record: the columns of to_previous, then those of normal_to_previous (w = 0).
-ShadowInstanceMotion instance_record(const InstanceMotion& m) {
-  ShadowInstanceMotion r{};
-  for (int c = 0; c < 4; ++c) r.to_previous[c] = m.to_previous[c];
-  for (int c = 0; c < 3; ++c) r.normal_to_previous[c] = glm::vec4(m.normal_to_previous[c], 0.0f);
-  return r;
-}
-
-// A buffer holding `records` (at least one record's room: a GpuBuffer is never empty), uploaded.
-template <class Record>
-std::unique_ptr<GpuBuffer> record_buffer(VulkanContext& context, const std::vector<Record>& records) {
-  static_assert(sizeof(Record) % sizeof(float) == 0, "records of whole floats");
-  constexpr size_t floats = sizeof(Record) / sizeof(float);
-  auto buffer = std::make_unique<GpuBuffer>(context, floats * std::max<size_t>(records.size(), 1));
-  std::vector<float> values(buffer->floats(), 0.0f);
-  std::memcpy(values.data(), records.data(), records.size() * sizeof(Record));
-  buffer->upload(values);
-  return buffer;
-}
-
-}  // namespace
 
 std::vector<GlossyMotion> glossy_motion_vulkan(VulkanContext& context, const FrameGeometry& g, const Frame& frame,
                                                double* ms) {
@@ -71,35 +44,24 @@ std::vector<GlossyMotion> glossy_motion_vulkan(VulkanContext& context, const Fra
   pack_ids(frame.uint_channel("path.secondary.instance"), *hit_id);
   pack_ids(frame.uint_channel("rng.seed"), *seed);
   // T^{-1} per instance, computed once on the host by the golden instance_to_previous; the two Views.
-  std::vector<ShadowInstanceMotion> instances;
-  for (const InstanceMotion& m : instance_to_previous(g.pose, g.prev_pose)) instances.push_back(instance_record(m));
+  const std::vector<ShadowInstanceMotion> instances = to_previous_records(g);
   const auto instance_buffer = record_buffer(context, instances);
-  const auto views = record_buffer(context, std::vector<ViewRecord>{view_record(g.view), view_record(g.prev_view)});
+  const auto views = view_buffer(context, g);
   // One GlossyMotionRecord per pixel.
   const auto result = std::make_unique<GpuBuffer>(context, size_t(w) * size_t(h) * (sizeof(GlossyMotionRecord) / 4));
 
-  // The pipeline, with the SVGF ports' workgroup shape on this device (filters/svgf/planes_shared.h) as
-  // specialization constants 0 and 1.
-  static_assert(kSvgfGroupSizeXConstant == 0 && kSvgfGroupSizeYConstant == 1, "constant_id 0, 1 in order");
-  const uint32_t group_width = context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX;
-  const uint32_t group_height = context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY;
-  const ComputePipeline pipeline(context, load_port(context, "motion_glossy"),
-                                 port_bindings(context, kGlossyMotionTexelBindings, kGlossyMotionStorageBindings),
-                                 sizeof(GlossyMotionPush), {int32_t(group_width), int32_t(group_height)});
+  const MotionPort port(context, "motion_glossy", kGlossyMotionTexelBindings, kGlossyMotionStorageBindings,
+                        sizeof(GlossyMotionPush));
   const GlossyMotionPush push{.eye = glm::vec4(g.view.eye, 0.0f),
                               .prev_eye = glm::vec4(g.prev_view.eye, 0.0f),
                               .width = uint32_t(w),
                               .height = uint32_t(h),
                               .instance_count = uint32_t(instances.size()),
                               .min_ggx_alpha = kMinGgxAlpha};
-  ComputeBatch batch(context, 1);
-  batch.dispatch(pipeline,
-                 {reflector.get(), normal.get(), hit.get(), reflector_id.get(), hit_id.get(), seed.get(),
-                  instance_buffer.get(), views.get(), result.get()},
-                 &push, group_count(uint32_t(w), group_width), group_count(uint32_t(h), group_height),
-                 "motion_glossy");
-  batch.run();
-  batch.total_time(ms);
+  port.run(context,
+           {reflector.get(), normal.get(), hit.get(), reflector_id.get(), hit_id.get(), seed.get(),
+            instance_buffer.get(), views.get(), result.get()},
+           &push, w, h, ms);
 
   std::vector<GlossyMotionRecord> records(size_t(w) * size_t(h));
   std::memcpy(records.data(), result->data(), records.size() * sizeof(GlossyMotionRecord));

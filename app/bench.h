@@ -4,11 +4,13 @@
 
 #include "app/commands.h"
 #include "core/frame.h"
+#include "gpu/vulkan_context.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/scene.h"
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -47,6 +49,24 @@ double median_ms(int warmup, int runs, Fn&& fn) {
   }
   return median(ms);
 }
+
+// The median device time (ComputeBatch timestamps, a port's `ms` out-parameter) of `runs` calls of run(double* ms),
+// after `warmup` untimed ones (at least one: lavapipe compiles the shader on the first).
+template <class Run>
+double median_device_ms(int warmup, int runs, Run&& run) {
+  for (int i = 0; i < std::max(1, warmup); ++i) run(nullptr);
+  std::vector<double> ms;
+  for (int i = 0; i < runs; ++i) {
+    double t = 0.0;
+    run(&t);
+    ms.push_back(t);
+  }
+  return median(ms);
+}
+
+// The render side's stages (gradients, motion): the device their ports run on when --backend names vulkan, after
+// printing it and that `columns` are the ports' device times; null for --backend cpu.
+std::unique_ptr<VulkanContext> bench_ports_context(const BenchOptions& o, const std::string& columns);
 
 // "all" or a comma-separated list of scene names.
 std::vector<std::string> bench_scene_list(const std::string& text);

@@ -24,20 +24,6 @@
 namespace rtdr {
 namespace {
 
-// The median device time (the ports' `ms` out-parameter) of `runs` calls of run(double* ms), after `warmup` untimed
-// ones (at least one: lavapipe compiles the shader on the first).
-template <class Run>
-double median_port_ms(int warmup, int runs, Run&& run) {
-  for (int i = 0; i < std::max(1, warmup); ++i) run(nullptr);
-  std::vector<double> ms;
-  for (int i = 0; i < runs; ++i) {
-    double t = 0.0;
-    run(&t);
-    ms.push_back(t);
-  }
-  return median(ms);
-}
-
 // Steps 2 and 5 of frame f's gradient samples [ASVGF18 Sec. 3.3], timed on the CPU and as the Vulkan ports.
 struct StepTimes {
   double select_ms = 0.0, merge_ms = 0.0, select_vulkan_ms = 0.0, merge_vulkan_ms = 0.0;
@@ -59,14 +45,14 @@ StepTimes time_steps(const BenchOptions& o, VulkanContext& context, const Scene&
             select_gradient_source(previous, sx, sy, o.gradient, seed, f);
     });
   });
-  t.select_vulkan_ms = median_port_ms(o.warmup, o.runs, [&](double* ms) {
+  t.select_vulkan_ms = median_device_ms(o.warmup, o.runs, [&](double* ms) {
     select_gradient_sources_vulkan(context, previous, o.gradient, seed, f, ms);
   });
   // Step 5 on the candidates of steps 2-4.
   const std::vector<GradientCandidate> candidates =
       candidate_list(gradient_candidates(scene, current, previous, o.gradient, seed));
   t.merge_ms = median_ms(o.warmup, o.runs, [&] { gradient_winners(candidates, s, strata_x, strata_y); });
-  t.merge_vulkan_ms = median_port_ms(o.warmup, o.runs, [&](double* ms) {
+  t.merge_vulkan_ms = median_device_ms(o.warmup, o.runs, [&](double* ms) {
     gradient_winners_vulkan(context, candidates, size.width, size.height, s, ms);
   });
   return t;
@@ -80,14 +66,8 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
   // run by a factor of three. Keep freed memory in the process, so that both columns time the rendering.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  const std::vector<std::string> backends = parse_backends(o.backend);
-  std::unique_ptr<VulkanContext> context;  // the ports' device, with --backend vulkan
-  if (std::find(backends.begin(), backends.end(), "vulkan") != backends.end()) {
-    context = std::make_unique<VulkanContext>();
-    std::printf("vulkan device %s (%s, %s-buffer inputs): select vk and merge vk are the ports' device times\n",
-                context->device_name().c_str(), context->memory_summary().c_str(),
-                shader_inputs_name(context->shader_inputs()));
-  }
+  // The ports' device, with --backend vulkan.
+  const std::unique_ptr<VulkanContext> context = bench_ports_context(o, "select vk and merge vk are");
   std::printf("%-14s %9s %10s %14s %7s %10s", "scene", "size", "plain ms", "gradients ms", "ratio", "gradients");
   if (context) std::printf(" %9s %9s %9s %9s", "select ms", "select vk", "merge ms", "merge vk");
   std::printf("   (median of %d runs, %d threads, strata of %d)\n", o.runs, thread_count(), o.gradient.stratum_size);

@@ -41,31 +41,11 @@ double median_trace_loop_ms(const BenchOptions& o, const Scene& scene, const Fra
   return 1e3 * median(seconds);
 }
 
-// The median device time (ComputeBatch timestamps, the `ms` out-parameter) of `runs` calls of run(double* ms),
-// after `warmup` untimed ones (lavapipe compiles the shader on the first).
-template <class Run>
-double median_device_ms(int warmup, int runs, Run&& run) {
-  for (int i = 0; i < std::max(1, warmup); ++i) run(nullptr);
-  std::vector<double> ms;
-  for (int i = 0; i < runs; ++i) {
-    double t = 0.0;
-    run(&t);
-    ms.push_back(t);
-  }
-  return median(ms);
-}
-
 }  // namespace
 
 void bench_motion(const BenchOptions& o, const Size size, std::ostream* csv) {
-  const std::vector<std::string> backends = parse_backends(o.backend);
-  std::unique_ptr<VulkanContext> context;  // the ports' device, with --backend vulkan
-  if (std::find(backends.begin(), backends.end(), "vulkan") != backends.end()) {
-    context = std::make_unique<VulkanContext>();
-    std::printf("vulkan device %s (%s, %s-buffer inputs): the vk columns are the ports' device times\n",
-                context->device_name().c_str(), context->memory_summary().c_str(),
-                shader_inputs_name(context->shader_inputs()));
-  }
+  // The ports' device, with --backend vulkan.
+  const std::unique_ptr<VulkanContext> context = bench_ports_context(o, "the vk columns are");
   std::printf("%-14s %9s %9s %10s %9s %9s", "scene", "size", "trace ms", "+shading", "shadow ms", "splat ms");
   if (context) std::printf(" %9s %9s", "shadow vk", "splat vk");
   std::printf(" %9s %9s", "dual ms", "glossy ms");

@@ -9,16 +9,28 @@
 //                   --backend vulkan their ports (bench_motion.cpp)
 //   --stage filter: a denoising method per pass on a rendered sequence, on each --backend (bench_filter.cpp); the
 //                   default stage when --backend is given
+#include "app/backend.h"
 #include "app/bench.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "motion/backproject.h"
 #include "scenes/catalog.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <sstream>
 
 namespace rtdr {
+
+std::unique_ptr<VulkanContext> bench_ports_context(const BenchOptions& o, const std::string& columns) {
+  const std::vector<std::string> backends = parse_backends(o.backend);
+  if (std::find(backends.begin(), backends.end(), "vulkan") == backends.end()) return nullptr;
+  auto context = std::make_unique<VulkanContext>();
+  std::printf("vulkan device %s (%s, %s-buffer inputs): %s the ports' device times\n", context->device_name().c_str(),
+              context->memory_summary().c_str(), shader_inputs_name(context->shader_inputs()), columns.c_str());
+  return context;
+}
 
 std::vector<std::string> bench_scene_list(const std::string& text) {
   if (text == "all") return shipped_scene_names();

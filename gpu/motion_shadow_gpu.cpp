@@ -70,14 +70,8 @@ std::vector<SplatMotion> splat_shadow_motion_vulkan(VulkanContext& context, cons
                                                     const std::vector<glm::vec2>& surface_motion,
                                                     const std::vector<float>& depth, int width, int height, int size,
                                                     double* ms) {
-  // splat_shadow_motion's checks, with its messages.
+  check_splat_inputs(shadow, surface_motion, depth, width, height, size);  // splat_shadow_motion's checks
   const size_t pixels = size_t(width) * size_t(height);
-  if (shadow.size() != pixels || surface_motion.size() != pixels || depth.size() != pixels)
-    throw Error("splat_shadow_motion: planes of " + std::to_string(shadow.size()) + ", " +
-                std::to_string(surface_motion.size()) + " and " + std::to_string(depth.size()) + " pixels for " +
-                std::to_string(width) + "x" + std::to_string(height));
-  if (size < 1 || size % 2 == 0)
-    throw Error("splat_shadow_motion: the window's side must be odd and at least 1, not " + std::to_string(size));
   if (pixels == 0) return {};
 
   // (m^V, valid) and (surface motion, depth) as (x, y, z, 0) records.

@@ -162,12 +162,7 @@ void SvgfVulkan::reset() { frames_ = 0; }
 Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   times_.clear();
   const int w = in.width(), h = in.height();
-  if (buffers_ && frames_ > 0 && (buffers_->width != w || buffers_->height != h))
-    throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(w) + "x" +
-                std::to_string(h) + ", was " + std::to_string(buffers_->width) + "x" +
-                std::to_string(buffers_->height) + ")");
-  if (!buffers_ || buffers_->width != w || buffers_->height != h) buffers_ = std::make_unique<Buffers>(context_, w, h);
-  Buffers& b = *buffers_;
+  Buffers& b = frame_buffers(buffers_, context_, in, frames_ > 0);
   // With a dump, each intermediate plane is copied out after the dispatch that writes it (Dump).
   Dump* d = nullptr;
   if (dump) {

@@ -157,12 +157,7 @@ void TrmvVulkan::record_component(int k, const GpuBuffer* alpha_v) {
 Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   times_.clear();
   const int w = in.width(), h = in.height();
-  if (buffers_ && frames_ > 0 && (buffers_->width != w || buffers_->height != h))
-    throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(w) + "x" +
-                std::to_string(h) + ", was " + std::to_string(buffers_->width) + "x" +
-                std::to_string(buffers_->height) + ")");
-  if (!buffers_ || buffers_->width != w || buffers_->height != h) buffers_ = std::make_unique<Buffers>(context_, w, h);
-  Buffers& b = *buffers_;
+  Buffers& b = frame_buffers(buffers_, context_, in, frames_ > 0);
   const TrmvParams& p = params_.trmv;
   const int cur = frames_ & 1;
 

@@ -53,9 +53,8 @@ std::vector<uint32_t> valid_counts(const std::vector<ShadowMotion>& shadow, int 
 
 }  // namespace
 
-std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
-                                           const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,
-                                           int width, int height, int size) {
+void check_splat_inputs(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
+                        const std::vector<float>& depth, int width, int height, int size) {
   const size_t pixels = size_t(width) * size_t(height);
   if (shadow.size() != pixels || surface_motion.size() != pixels || depth.size() != pixels)
     throw Error("splat_shadow_motion: planes of " + std::to_string(shadow.size()) + ", " +
@@ -63,6 +62,13 @@ std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& sh
                 std::to_string(width) + "x" + std::to_string(height));
   if (size < 1 || size % 2 == 0)
     throw Error("splat_shadow_motion: the window's side must be odd and at least 1, not " + std::to_string(size));
+}
+
+std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
+                                           const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,
+                                           int width, int height, int size) {
+  check_splat_inputs(shadow, surface_motion, depth, width, height, size);
+  const size_t pixels = size_t(width) * size_t(height);
   // Speed only, the same result: a pixel whose window holds no valid vector at all keeps its surface motion (or
   // (0, 0) without a surface) without visiting the window's size^2 pixels, which most pixels far from any shadow
   // would do for nothing (rtdr bench --stage motion; tests/motion_shadow_splat_test.cpp compares both).

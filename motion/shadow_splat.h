@@ -39,6 +39,11 @@ struct SplatMotion {
 SplatMotion splat_shadow_motion_pixel(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
                                     const std::vector<float>& depth, int width, int height, int size, int x, int y);
 
+// Throws rtdr::Error unless the three planes hold width x height pixels and `size` is odd and at least 1: the
+// checks of splat_shadow_motion, which its port makes too (gpu/motion_shadow_gpu.h).
+void check_splat_inputs(const std::vector<ShadowMotion>& shadow, const std::vector<glm::vec2>& surface_motion,
+                        const std::vector<float>& depth, int width, int height, int size);
+
 // Every pixel's splatted motion, row-major. `size` is the window's side, odd and at least 1.
 std::vector<SplatMotion> splat_shadow_motion(const std::vector<ShadowMotion>& shadow,
                                            const std::vector<glm::vec2>& surface_motion, const std::vector<float>& depth,

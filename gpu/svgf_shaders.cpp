@@ -1,6 +1,7 @@
 // The SVGF ports' pipelines and their dispatches. See svgf_shaders.h.
 #include "gpu/svgf_shaders.h"
 
+#include "core/error.h"
 #include "filters/svgf/atrous.h"
 
 #include <algorithm>
@@ -128,7 +129,10 @@ SvgfShaders::SvgfShaders(VulkanContext& context)
                      sizeof(TrmvTemporalPush), specialization()),
       trmv_spatial_(context, load_port(context, "trmv_spatial"),
                     port_bindings(context, kTrmvSpatialTexelBindings, kTrmvSpatialStorageBindings),
-                    sizeof(TrmvSpatialPush), specialization()),
+                    sizeof(TrmvSpatialPush), specialization({1})),
+      trmv_spatial_3_(context, load_port(context, "trmv_spatial"),
+                      port_bindings(context, kTrmvSpatialTexelBindings, kTrmvSpatialStorageBindings),
+                      sizeof(TrmvSpatialPush), specialization({kTrmvSpatialMaxComponents})),
       trmv_cleanup_(context, load_port(context, "trmv_cleanup"),
                     port_bindings(context, kTrmvCleanupTexelBindings, kTrmvCleanupStorageBindings),
                     sizeof(TrmvCleanupPush), specialization()),
@@ -207,11 +211,22 @@ void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& i
                  &push, groups_x(push.width), groups_y(push.height), "trmv_temporal");
 }
 
-void SvgfShaders::trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
-                               const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push,
+void SvgfShaders::trmv_spatial(ComputeBatch& batch, const std::vector<const GpuBuffer*>& in,
+                               const GpuBuffer& surface, const GpuBuffer& depth_grad,
+                               const std::vector<const GpuBuffer*>& out, const TrmvSpatialPush& push,
                                const char* label) const {
-  batch.dispatch(trmv_spatial_, {&color_sigma, &surface, &depth_grad, &out}, &push, groups_x(push.width),
-                 groups_y(push.height), label);
+  static_assert(kTrmvSpatialComponentsConstant == kAtrousKernelSizeConstant, "constant_id 2 after the workgroup shape");
+  if (in.size() != out.size() || (in.size() != 1 && in.size() != size_t(kTrmvSpatialMaxComponents)))
+    throw Error("trmv_spatial: filters 1 or 3 planes, got " + std::to_string(in.size()) + " in and " +
+                std::to_string(out.size()) + " out");
+  // A plane beyond the pipeline's count is bound to the first one's buffer and never touched (spatial_shared.h).
+  const auto plane = [](const std::vector<const GpuBuffer*>& planes, size_t m) {
+    return m < planes.size() ? planes[m] : planes[0];
+  };
+  batch.dispatch(in.size() == 1 ? trmv_spatial_ : trmv_spatial_3_,
+                 {plane(in, 0), plane(in, 1), plane(in, 2), &surface, &depth_grad, plane(out, 0), plane(out, 1),
+                  plane(out, 2)},
+                 &push, groups_x(push.width), groups_y(push.height), label);
 }
 
 void SvgfShaders::trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,

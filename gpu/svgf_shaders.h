@@ -142,11 +142,12 @@ class SvgfShaders {
   // (filters/trmv/falloff_shared.h).
   void trmv_falloff(ComputeBatch& batch, const TrmvFalloffPlanes& in, const GpuBuffer& theta_alpha_out,
                     const TrmvFalloffPush& push) const;
-  // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h).
+  // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h),
+  // of one plane, or of three side by side (`in` and `out` of one size, 1 or 3; throws rtdr::Error otherwise).
   // `label`: the pass its time counts to (the clean-up's bilateral is part of "trmv_cleanup").
-  void trmv_spatial(ComputeBatch& batch, const GpuBuffer& color_sigma, const GpuBuffer& surface,
-                    const GpuBuffer& depth_grad, const GpuBuffer& out, const TrmvSpatialPush& push,
-                    const char* label = "trmv_spatial") const;
+  void trmv_spatial(ComputeBatch& batch, const std::vector<const GpuBuffer*>& in, const GpuBuffer& surface,
+                    const GpuBuffer& depth_grad, const std::vector<const GpuBuffer*>& out,
+                    const TrmvSpatialPush& push, const char* label = "trmv_spatial") const;
   // [TRMV21 Eq. 7, Eq. 8, Sec. 5]: cbar_i and the histories -> (cbar_i, std) and (w_A, w_C, std)
   // (filters/trmv/cleanup_shared.h).
   void trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,
@@ -180,7 +181,8 @@ class SvgfShaders {
   // The SVGF ports' workgroup shape on this device (planes_shared.h): 32x2 on a CPU device, else 8x8.
   uint32_t group_width_, group_height_;
   ComputePipeline temporal_, variance_, atrous_5x5_, atrous_3x3_, modulate_, tonemap_, taa_, trmv_temporal_;
-  ComputePipeline trmv_spatial_, trmv_cleanup_;
+  // TRMV's 1-D bilateral filtering one plane, and three side by side (kTrmvSpatialComponentsConstant).
+  ComputePipeline trmv_spatial_, trmv_spatial_3_, trmv_cleanup_;
   ComputePipeline trmv_falloff_;
   // A-SVGF's ports.
   ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_, asvgf_gradient_atrous_;

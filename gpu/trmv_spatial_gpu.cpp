@@ -63,8 +63,8 @@ RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const Su
       trmv_spatial_push(w, h, kTrmvVertical, params.spatial_radius, false, params.spatial_sigma, edges);
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 2);
-  shaders.trmv_spatial(batch, *input, *g.surface, *g.depth_grad, *rows, horizontal);
-  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *out, vertical);
+  shaders.trmv_spatial(batch, {input.get()}, *g.surface, *g.depth_grad, {rows.get()}, horizontal);
+  shaders.trmv_spatial(batch, {rows.get()}, *g.surface, *g.depth_grad, {out.get()}, vertical);
   batch.run();
   batch.total_time(ms);
   return unpack_rgb(*out, w, h);
@@ -112,8 +112,9 @@ TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporal
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 3);
   shaders.trmv_cleanup(batch, *color, *fetched_alpha_v, *clamped, *color_sigma, *weights, push);
-  shaders.trmv_spatial(batch, *color_sigma, *g.surface, *g.depth_grad, *rows, horizontal, "trmv_cleanup");
-  shaders.trmv_spatial(batch, *rows, *g.surface, *g.depth_grad, *filtered, vertical, "trmv_cleanup");
+  shaders.trmv_spatial(batch, {color_sigma.get()}, *g.surface, *g.depth_grad, {rows.get()}, horizontal,
+                       "trmv_cleanup");
+  shaders.trmv_spatial(batch, {rows.get()}, *g.surface, *g.depth_grad, {filtered.get()}, vertical, "trmv_cleanup");
   batch.run();
   batch.total_time(ms);
 

@@ -20,10 +20,10 @@ using Clock = std::chrono::steady_clock;
 
 enum Component { kVisibility = 0, kDiffuse = 1, kGlossy = 2 };
 
-// Commands per frame: the falloff; per component two spatial dispatches, the temporal blend, the clean-up and its
-// two 1-D dispatches, a copy of the history when it is taken after the clean-up, and the copy of the result into
-// readback memory.
-constexpr uint32_t kCommandsPerFrame = 1 + 3 * (2 + 1 + 3 + 1 + 1);
+// Commands per frame: the falloff; the spatial filter's two 1-D dispatches (the three components side by side); per
+// component the temporal blend and the clean-up's strength; the clean-up's two 1-D dispatches; per component a copy
+// of the history when it is taken after the clean-up, and the copy of the result into readback memory.
+constexpr uint32_t kCommandsPerFrame = 1 + 2 + 3 * 2 + 2 + 3 * 2;
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
@@ -43,8 +43,9 @@ struct TrmvVulkan::Buffers {
   PlanePtr noisy[3], motion[3], filtered[3], temporal[3], fetched[3], clamped[3], color_sigma[3], weights[3],
       cleaned[3], readback[3], history[3][2];
   // The visibility's shadow motion validity (the falloff's), its (theta, alpha^V), the diffuse light's re-shaded
-  // history (r, g, b, valid), the 1-D passes' intermediate, and one unread texel of each kind for absent planes.
-  PlanePtr shadow_valid, falloff, reshaded, rows, no_ids, no_records, no_pairs;
+  // history (r, g, b, valid), the 1-D passes' intermediates (per component), and one unread texel of each kind for
+  // absent planes.
+  PlanePtr shadow_valid, falloff, reshaded, rows[3], no_ids, no_records, no_pairs;
 
   Buffers(VulkanContext& context, int w, int h) : width(w), height(h) {
     const auto rgba = [&] { return plane_buffer(context, w, h, TexelFormat::RGBA32F); };
@@ -71,7 +72,7 @@ struct TrmvVulkan::Buffers {
     shadow_valid = plane_buffer(context, w, h, TexelFormat::R32UI);
     falloff = plane_buffer(context, w, h, TexelFormat::RG32F);
     reshaded = rgba();
-    rows = rgba();
+    for (PlanePtr& r : rows) r = rgba();
     no_ids = plane_buffer(context, 1, 1, TexelFormat::R32UI);
     no_records = plane_buffer(context, 1, 1, TexelFormat::RGBA32F);
     no_pairs = plane_buffer(context, 1, 1, TexelFormat::RG32F);
@@ -100,58 +101,72 @@ InputChannels TrmvVulkan::inputs() const { return trmv_input_channels(); }
 
 std::vector<std::string> TrmvVulkan::dump_channels() const { return trmv_dump_channels(params_.trmv); }
 
-void TrmvVulkan::record_component(int k, const GpuBuffer* alpha_v) {
+void TrmvVulkan::record_components(const GpuBuffer* alpha_v) {
   Buffers& b = *buffers_;
   const TrmvParams& p = params_.trmv;
   const SvgfParams& edges = params_.svgf;
   const int w = b.width, h = b.height, cur = frames_ & 1, prev = cur ^ 1;
   const bool has_history = frames_ > 0;
-  // 1. The spatial filter of the current frame, horizontal then vertical: c~_i [TRMV21 Sec. 5].
-  shaders_.trmv_spatial(batch_, *b.noisy[k], *b.surface, *b.depth_grad, *b.rows,
+  const auto planes = [](const PlanePtr (&buffers)[3]) {
+    return std::vector<const GpuBuffer*>{buffers[0].get(), buffers[1].get(), buffers[2].get()};
+  };
+  // 1. The spatial filter of the current frame, horizontal then vertical, the three components side by side (they
+  //    share the G-buffer, hence the taps' w_z and w_n): c~_i [TRMV21 Sec. 5].
+  shaders_.trmv_spatial(batch_, planes(b.noisy), *b.surface, *b.depth_grad, planes(b.rows),
                         trmv_spatial_push(w, h, kTrmvHorizontal, p.spatial_radius, false, p.spatial_sigma, edges));
-  shaders_.trmv_spatial(batch_, *b.rows, *b.surface, *b.depth_grad, *b.filtered[k],
+  shaders_.trmv_spatial(batch_, planes(b.rows), *b.surface, *b.depth_grad, planes(b.filtered),
                         trmv_spatial_push(w, h, kTrmvVertical, p.spatial_radius, false, p.spatial_sigma, edges));
-  // 2-3. The history along the component's motion, clamped, blended [TRMV21 Eq. 2, Sec. 5]. Its output is next
-  //      frame's history unless that is taken after the clean-up (history_after_cleanup).
-  const bool reshaded = k == kDiffuse && trmv_uses_dual(p.motion) && p.cones != 0;
-  const GpuBuffer& temporal = p.history_after_cleanup != 0 ? *b.temporal[k] : *b.history[k][cur];
-  const TrmvTemporalPlanes in{b.filtered[k].get(),
-                              b.mesh[cur].get(),
-                              b.motion[k].get(),
-                              b.no_ids.get(),  // the method's vectors carry no validity: each falls back itself
-                              reshaded ? b.reshaded.get() : b.no_records.get(),
-                              b.history[k][prev].get(),
-                              b.mesh[prev].get(),
-                              alpha_v ? alpha_v : b.no_pairs.get()};
-  shaders_.trmv_temporal(batch_, in, temporal, *b.fetched[k], *b.clamped[k],
-                         TrmvTemporalPush{.width = uint32_t(w),
+  // The temporal pass's output: next frame's history unless that is taken after the clean-up
+  // (history_after_cleanup).
+  const auto temporal = [&](int k) -> const GpuBuffer& {
+    return p.history_after_cleanup != 0 ? *b.temporal[k] : *b.history[k][cur];
+  };
+  for (const int k : {kVisibility, kDiffuse, kGlossy}) {
+    // 2-3. The history along the component's motion, clamped, blended [TRMV21 Eq. 2, Sec. 5]; alpha^V for the
+    //      visibility.
+    const GpuBuffer* alpha = k == kVisibility ? alpha_v : nullptr;
+    const bool reshaded = k == kDiffuse && trmv_uses_dual(p.motion) && p.cones != 0;
+    const TrmvTemporalPlanes in{b.filtered[k].get(),
+                                b.mesh[cur].get(),
+                                b.motion[k].get(),
+                                b.no_ids.get(),  // the method's vectors carry no validity: each falls back itself
+                                reshaded ? b.reshaded.get() : b.no_records.get(),
+                                b.history[k][prev].get(),
+                                b.mesh[prev].get(),
+                                alpha ? alpha : b.no_pairs.get()};
+    shaders_.trmv_temporal(batch_, in, temporal(k), *b.fetched[k], *b.clamped[k],
+                           TrmvTemporalPush{.width = uint32_t(w),
+                                            .height = uint32_t(h),
+                                            .prev_width = has_history ? uint32_t(w) : 0u,
+                                            .prev_height = has_history ? uint32_t(h) : 0u,
+                                            .has_history = has_history ? 1u : 0u,
+                                            .has_valid = 0u,
+                                            .has_reshaded = reshaded ? 1u : 0u,
+                                            .has_alpha = alpha ? 1u : 0u,
+                                            .alpha = p.alpha,
+                                            .clamp_gamma = p.clamp_gamma,
+                                            .clamp_radius = p.clamp_radius});
+    // 4. The clean-up's strength, as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8]; alpha^V rides in the
+    //    fetched history's w.
+    shaders_.trmv_cleanup(batch_, temporal(k), *b.fetched[k], *b.clamped[k], *b.color_sigma[k], *b.weights[k],
+                          TrmvCleanupPush{.width = uint32_t(w),
                                           .height = uint32_t(h),
-                                          .prev_width = has_history ? uint32_t(w) : 0u,
-                                          .prev_height = has_history ? uint32_t(h) : 0u,
-                                          .has_history = has_history ? 1u : 0u,
-                                          .has_valid = 0u,
-                                          .has_reshaded = reshaded ? 1u : 0u,
-                                          .has_alpha = alpha_v ? 1u : 0u,
+                                          .has_alpha_v = alpha ? 1u : 0u,
                                           .alpha = p.alpha,
-                                          .clamp_gamma = p.clamp_gamma,
-                                          .clamp_radius = p.clamp_radius});
-  // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8], then its 9x9 bilateral
-  //    with each pixel's std; alpha^V rides in the fetched history's w.
-  shaders_.trmv_cleanup(batch_, temporal, *b.fetched[k], *b.clamped[k], *b.color_sigma[k], *b.weights[k],
-                        TrmvCleanupPush{.width = uint32_t(w),
-                                        .height = uint32_t(h),
-                                        .has_alpha_v = alpha_v ? 1u : 0u,
-                                        .alpha = p.alpha,
-                                        .cleanup_eps = p.cleanup_eps,
-                                        .cleanup_sigma_max = p.cleanup_sigma_max});
+                                          .cleanup_eps = p.cleanup_eps,
+                                          .cleanup_sigma_max = p.cleanup_sigma_max});
+  }
+  // Then its 9x9 bilateral with each pixel's std, the three components side by side.
   const int radius = (p.cleanup_size - 1) / 2;
-  shaders_.trmv_spatial(batch_, *b.color_sigma[k], *b.surface, *b.depth_grad, *b.rows,
+  shaders_.trmv_spatial(batch_, planes(b.color_sigma), *b.surface, *b.depth_grad, planes(b.rows),
                         trmv_spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges), "trmv_cleanup");
-  shaders_.trmv_spatial(batch_, *b.rows, *b.surface, *b.depth_grad, *b.cleaned[k],
+  shaders_.trmv_spatial(batch_, planes(b.rows), *b.surface, *b.depth_grad, planes(b.cleaned),
                         trmv_spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges), "trmv_cleanup");
-  if (p.history_after_cleanup != 0) batch_.copy(*b.cleaned[k], *b.history[k][cur], "trmv_cleanup");
-  // The result where the host reads it fast (compute.h's Memory::Readback).
-  batch_.copy(*b.cleaned[k], *b.readback[k], kTransferPass);
+  for (const int k : {kVisibility, kDiffuse, kGlossy}) {
+    if (p.history_after_cleanup != 0) batch_.copy(*b.cleaned[k], *b.history[k][cur], "trmv_cleanup");
+    // The result where the host reads it fast (compute.h's Memory::Readback).
+    batch_.copy(*b.cleaned[k], *b.readback[k], kTransferPass);
+  }
 }
 
 Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
@@ -204,7 +219,8 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
     reshaded = std::move(r.reshaded);
     pack_rgb(reshaded, *b.reshaded);
     float* records = b.reshaded->data();
-    for (size_t i = 0; i < r.reshaded_valid.data.size(); ++i) records[4 * i + 3] = r.reshaded_valid.data[i] != 0 ? 1.0f : 0.0f;
+    for (size_t i = 0; i < r.reshaded_valid.data.size(); ++i)
+      records[4 * i + 3] = r.reshaded_valid.data[i] != 0 ? 1.0f : 0.0f;
     times_["trmv_reshade"] += ms_since(r0);
   }
 
@@ -225,9 +241,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
                                           .alpha = p.alpha,
                                           .falloff_sigma = p.falloff_sigma});
   }
-  record_component(kVisibility, shadow ? b.falloff.get() : nullptr);
-  record_component(kDiffuse, nullptr);
-  record_component(kGlossy, nullptr);
+  record_components(shadow ? b.falloff.get() : nullptr);
   batch_.run(submits_);
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;

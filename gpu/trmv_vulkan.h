@@ -1,6 +1,7 @@
 // TRMV, the whole filter, on a Vulkan device: the Method behind `rtdr filter --backend vulkan --method trmv`. The
-// same passes in the same order as TrmvFilter (filters/trmv/trmv.h), each a dispatch of the ports in
-// filters/trmv/*.comp, with every plane and history on the device:
+// same passes as TrmvFilter (filters/trmv/trmv.h), each a dispatch of the ports in filters/trmv/*.comp, with every
+// plane and history on the device; the three components' 1-D bilateral passes run side by side, one dispatch for
+// all three (filters/trmv/spatial_shared.h), since they share the G-buffer:
 //   visibility V:  the spatial filter (two 1-D dispatches) -> the falloff (alpha^V, with the shadow motion)
 //                  [TRMV21 Eq. 4] -> the temporal blend and clamp [TRMV21 Eq. 2, Sec. 5] -> the clean-up
 //                  [TRMV21 Eq. 7-8] (one dispatch and two 1-D ones)
@@ -50,9 +51,9 @@ class TrmvVulkan : public VulkanMethod {
 
  private:
   struct Buffers;  // every device plane, made for one frame size
-  // Records one component's spatial filter, temporal blend and clean-up into batch_ (`k`: 0 visibility, 1 diffuse,
-  // 2 glossy); `alpha_v` is the visibility's alpha plane, or null.
-  void record_component(int k, const GpuBuffer* alpha_v);
+  // Records the three components' spatial filter, temporal blends and clean-ups into batch_; `alpha_v` is the
+  // visibility's alpha plane, or null.
+  void record_components(const GpuBuffer* alpha_v);
   void dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const;
 
   VulkanContext& context_;

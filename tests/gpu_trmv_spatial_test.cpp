@@ -31,6 +31,9 @@
 // moves each result by under 2^-126, far below e C here.
 #include "gpu/trmv_spatial_gpu.h"
 
+#include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
+
 #include "core/error.h"
 #include "filters/trmv/spatial.h"
 #include "scenes/gltf_loader.h"
@@ -42,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -156,4 +160,56 @@ TEST_CASE("the TRMV spatial port rejects planes of different sizes and a negativ
   const SurfacePlanes s = blank_surface(12, 12);
   CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 11), s, TrmvParams{}, SvgfParams{}), Error);
   CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 12), s, params_with(-1, 5.0f), SvgfParams{}), Error);
+}
+
+// The Vulkan TRMV filters its three components side by side, one dispatch per axis (filters/trmv/spatial_shared.h's
+// kTrmvSpatialComponentsConstant, gpu/trmv_vulkan.cpp): each plane then gets exactly what it gets alone, since it
+// does the same operations in the same order and only shares the taps' w_z and w_n. With one std everywhere (the
+// spatial filter) and with each plane's own std per pixel (the clean-up's).
+TEST_CASE("three planes filtered side by side give each plane's result alone, bit for bit") {
+  const auto context = validated_context();
+  std::mt19937 rng(11);
+  const int w = 37, h = 23;
+  const SurfacePlanes s = random_surface(rng, w, h);
+  const auto surface = plane_buffer(*context, w, h, TexelFormat::RGBA32F),
+             depth_grad = plane_buffer(*context, w, h, TexelFormat::RG32F);
+  pack_surface(s, *surface);
+  pack_vec2(s.depth_grad, *depth_grad);
+  std::unique_ptr<GpuBuffer> in[3], rows[3], out[3], alone[3];
+  std::uniform_real_distribution<float> std_dev(0.0f, 3.0f);
+  for (int m = 0; m < 3; ++m) {
+    in[m] = plane_buffer(*context, w, h, TexelFormat::RGBA32F);
+    rows[m] = plane_buffer(*context, w, h, TexelFormat::RGBA32F);
+    out[m] = plane_buffer(*context, w, h, TexelFormat::RGBA32F);
+    alone[m] = plane_buffer(*context, w, h, TexelFormat::RGBA32F);
+    pack_rgb(random_plane(rng, w, h, 0.0f, 4.0f), *in[m]);
+    // Each plane's own std per pixel, some 0 (the identity), read where has_sigma_plane.
+    for (size_t i = 0; i < size_t(w) * size_t(h); ++i)
+      in[m]->data()[4 * i + 3] = m == 1 && i % 7 == 0 ? 0.0f : std_dev(rng);
+  }
+  const SvgfShaders shaders(*context);
+  for (const bool sigma_plane : {false, true}) {
+    INFO("per-pixel std " << sigma_plane);
+    const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, 4, sigma_plane, 2.5f, SvgfParams{});
+    const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, 4, sigma_plane, 2.5f, SvgfParams{});
+    ComputeBatch batch(*context, 8);
+    shaders.trmv_spatial(batch, {in[0].get(), in[1].get(), in[2].get()}, *surface, *depth_grad,
+                         {rows[0].get(), rows[1].get(), rows[2].get()}, horizontal);
+    shaders.trmv_spatial(batch, {rows[0].get(), rows[1].get(), rows[2].get()}, *surface, *depth_grad,
+                         {out[0].get(), out[1].get(), out[2].get()}, vertical);
+    batch.run();
+    for (int m = 0; m < 3; ++m) {
+      ComputeBatch one(*context, 2);
+      shaders.trmv_spatial(one, {in[m].get()}, *surface, *depth_grad, {rows[m].get()}, horizontal);
+      shaders.trmv_spatial(one, {rows[m].get()}, *surface, *depth_grad, {alone[m].get()}, vertical);
+      one.run();
+      CHECK(out[m]->download() == alone[m]->download());
+    }
+  }
+  ComputeBatch two(*context, 1);
+  CHECK_THROWS_AS(shaders.trmv_spatial(two, {in[0].get(), in[1].get()}, *surface, *depth_grad,
+                                       {out[0].get(), out[1].get()}, trmv_spatial_push(w, h, kTrmvHorizontal, 4,
+                                                                                        false, 2.5f, SvgfParams{})),
+                  Error);
+  check_no_validation_messages(*context);
 }

@@ -3,6 +3,10 @@
 // rendered sequences, with the validation layer on. Skipped, with a message, where no Vulkan device exists.
 //
 // What is asserted, and why:
+// - The spatial filter, whose dispatches filter the three components side by side (filters/trmv/spatial_shared.h):
+//   each component within the single plane's derived bound (tests/gpu_trmv_spatial_test.cpp) of the golden
+//   trmv_spatial_pass of its own input. The three share the taps' w_z and w_n and each does the single plane's
+//   operations in the same order, so side by side changes no value.
 // - The chaining, tightly. Each component's temporal output on the device is the golden trmv_temporal_pass of the
 //   device's own inputs to it (its dumped c~_i and alpha^V, and its previous frame's dumped output as the history),
 //   within the temporal port's bound, 1e-5 relative to max(|golden|, 1e-3) (tests/gpu_trmv_temporal_test.cpp: the
@@ -19,6 +23,7 @@
 #include "eval/frame_diff.h"
 #include "filters/image.h"
 #include "filters/passes.h"
+#include "filters/trmv/spatial.h"
 #include "filters/trmv/temporal.h"
 #include "filters/trmv/trmv.h"
 #include "scenes/gltf_loader.h"
@@ -78,9 +83,20 @@ Worst compare_trmv(VulkanContext& context, const std::string& scene_name, const 
     const double colour = max_rel(rgb_plane(got, "color"), rgb_plane(expected, "color"), 1e-2);
     CHECK(colour <= kTrmvRelError);
     worst.colour = std::max(worst.colour, colour);
-    // The visibility's and the glossy light's temporal pass, re-run golden on the device's own inputs.
     const SurfacePlanes s = SurfacePlanes::from_frame(in);
     const TrmvParams& p = params.trmv;
+    // The spatial filter, the three components side by side in one dispatch per axis: each within the single
+    // plane's derived bound of the golden pass on its own input (tests/gpu_trmv_spatial_test.cpp).
+    const std::pair<RgbPlane, RgbPlane> spatial[3] = {
+        {grey(in.float_channel("direct.visibility")),
+         grey(dump.float_channel(layer_name(layers::kTrmvVisibilitySpatial)))},
+        {rgb_plane(in, "indirect.diffuse"), rgb_plane(dump, layer_name(layers::kTrmvDiffuseSpatial))},
+        {rgb_plane(in, "indirect.glossy"), rgb_plane(dump, layer_name(layers::kTrmvGlossySpatial))}};
+    for (const auto& [noisy, got] : spatial) {
+      const double bound = bilateral_bound(p.spatial_radius, params.svgf.sigma_n, max_value(noisy), 20.0);
+      CHECK(max_difference(got, trmv_spatial_pass(noisy, s, p, params.svgf)) <= bound);
+    }
+    // The visibility's and the glossy light's temporal pass, re-run golden on the device's own inputs.
     // The history is the previous temporal output, or its clean-up (history_after_cleanup).
     const auto history = [&](const LayerDecl& temporal, const LayerDecl& cleaned, bool visibility) {
       if (f == 0) return TrmvHistory{};

@@ -6,8 +6,11 @@
 // the image or without a surface are skipped, the centre gets weight 1, a pixel without a surface or with std 0
 // passes through. The host dispatches it twice, horizontal then vertical (trmv_spatial_pass, 31x31), and TRMV's
 // clean-up [TRMV21 Sec. 5, Eq. 7-8] runs it with its per-pixel std, 9x9 (trmv_cleanup_pass; the std from
-// filters/trmv/cleanup.comp). RGB only: the method's visibility travels as (V, V, V). One invocation per pixel.
-//   in:  bindings 0 (c, std), 1 surface, 2 depth gradient; out: 3 (c', std).
+// filters/trmv/cleanup.comp). RGB only: the method's visibility travels as (V, V, V). One invocation per pixel, for
+// one plane or (GPU only) for up to three side by side: the Vulkan TRMV filters its three components in one
+// dispatch per axis, computing each tap's w_z and w_n once for all of them (gpu/trmv_vulkan.h); each plane does the
+// same operations in the same order as alone.
+//   in:  bindings 0-2 (c, std) of up to three planes, 3 surface, 4 depth gradient; out: 5-7 (c', std).
 //   Layout: filters/svgf/planes_shared.h and filters/trmv/spatial_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order. Only exp and pow (G, w_z, w_n) differ from libm's
@@ -22,10 +25,19 @@
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
-RTDR_INPUT_RGBA(0, color_sigma)
-RTDR_INPUT_RGBA(1, surface)
-RTDR_INPUT_RG(2, depth_grad)
-layout(std430, set = 0, binding = 3) writeonly buffer OutColor { vec4 out_color[]; };
+// GPU only: how many planes one dispatch filters side by side, 1 to 3 (a specialization constant,
+// spatial_shared.h). TRMV's components share the G-buffer, hence w_z and w_n, so each tap's weights are computed
+// once for all of them, as the SVGF ports filter both streams at once.
+layout(constant_id = kTrmvSpatialComponentsConstant) const int components = 1;
+
+RTDR_INPUT_RGBA(0, color_sigma_0)
+RTDR_INPUT_RGBA(1, color_sigma_1)
+RTDR_INPUT_RGBA(2, color_sigma_2)
+RTDR_INPUT_RGBA(3, surface)
+RTDR_INPUT_RG(4, depth_grad)
+layout(std430, set = 0, binding = 5) writeonly buffer OutColor0 { vec4 out_color_0[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer OutColor1 { vec4 out_color_1[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer OutColor2 { vec4 out_color_2[]; };
 
 layout(push_constant) uniform Push { TrmvSpatialPush push; };
 
@@ -43,37 +55,61 @@ float trmv_spatial_weight(float k, float sigma) {
   return exp(exponent);
 }
 
-// The golden per-pixel function, trmv_spatial_pixel: one 1-D pass at (x, y) along frame.axis with std sigma.
-vec3 trmv_spatial_pixel(ivec2 axis, int radius, float sigma, int x, int y) {
+// Plane m's record i (m a constant once `components` is: the selects fold).
+vec4 color_sigma(int m, int i) { return m == 0 ? color_sigma_0(i) : m == 1 ? color_sigma_1(i) : color_sigma_2(i); }
+void write_color(int m, int i, vec4 record) {
+  if (m == 0) out_color_0[i] = record;
+  if (m == 1) out_color_1[i] = record;
+  if (m == 2) out_color_2[i] = record;
+}
+
+// The golden per-pixel function, trmv_spatial_pixel, for each plane m < components: one 1-D pass at (x, y) along
+// axis with std sigma[m]. The same operations in the same order per plane as one plane alone.
+void trmv_spatial_pixel(ivec2 axis, int radius, float sigma[3], int x, int y, out vec3 result[3]) {
   const int i = index_of(x, y);
-  const vec3 c_p = color_sigma(i).rgb;
   const vec4 s_p = surface(i);
   // No surface, nothing to compare with; and std 0 keeps every tap but the centre at weight 0: the identity.
-  if (!has_surface(s_p) || !(sigma > 0.0f)) return c_p;
+  bool filters[3];
+  precise float sum_w[3];   // sum of the weights, the centre's 1 included
+  precise vec3 sum_wc[3];   // sum of the weighted values, the centre's included
+  for (int m = 0; m < components; ++m) {
+    result[m] = color_sigma(m, i).rgb;
+    filters[m] = has_surface(s_p) && sigma[m] > 0.0f;
+    sum_w[m] = 1.0f;
+    sum_wc[m] = result[m];
+  }
+  if (!has_surface(s_p)) return;
   const float z_p = s_p.w;
   const vec2 grad_z_p = depth_grad(i).xy;
   const vec3 n_p = s_p.xyz;
-  precise float sum_w = 1.0f;  // sum of the weights, the centre's 1 included
-  precise vec3 sum_wc = c_p;   // sum of the weighted values, the centre's included
   for (int k = -radius; k <= radius; ++k) {
     if (k == 0) continue;  // the centre, weight 1, is in the sums already (spatial.h)
     const ivec2 q = ivec2(x, y) + k * axis;  // the tap, k pixels along the axis
     // Off the image, or no surface there: skipped; the weights that remain renormalise.
     if (!inside(q.x, q.y)) continue;
-    const vec4 s_q = surface(index_of(q.x, q.y));
+    const int iq = index_of(q.x, q.y);
+    const vec4 s_q = surface(iq);
     if (!has_surface(s_q)) continue;
     const vec2 offset_pq = vec2(float(x - q.x), float(y - q.y));  // p - q in pixels [SVGF17 Eq. 3]
     // G(k; 0, sigma) w_z w_n: the spatial Gaussian times SVGF's depth and normal weights [SVGF17 Eq. 3, Eq. 4].
-    const float g = trmv_spatial_weight(float(k), sigma);
     const float w_z = weight_depth(z_p, s_q.w, grad_z_p, offset_pq, frame.sigma_z, frame.epsilon);
     const float w_n = weight_normal(n_p, s_q.xyz, frame.sigma_n);
-    precise float w = g * w_z * w_n;
-    sum_w += w;
-    sum_wc += w * color_sigma(index_of(q.x, q.y)).rgb;
+    // GPU only: with one std for every pixel (the spatial filter), every plane's Gaussian is the first's.
+    const float g_all = trmv_spatial_weight(float(k), sigma[0]);
+    for (int m = 0; m < components; ++m) {
+      if (!filters[m]) continue;
+      float g = g_all;
+      if (frame.has_sigma_plane != 0u) g = trmv_spatial_weight(float(k), sigma[m]);
+      precise float w = g * w_z * w_n;
+      sum_w[m] += w;
+      sum_wc[m] += w * color_sigma(m, iq).rgb;
+    }
   }
   // c'(p) = sum_k G w_z w_n c(q) / sum_k G w_z w_n [TRMV21 Sec. 5: the joint bilateral, one axis].
-  precise vec3 filtered = sum_wc / sum_w;
-  return filtered;
+  for (int m = 0; m < components; ++m) {
+    precise vec3 filtered = sum_wc[m] / sum_w[m];
+    if (filters[m]) result[m] = filtered;
+  }
 }
 
 // trmv_spatial_axis: trmv_spatial_pixel at every pixel, with the pixel's std (the plane's, or sigma_all).
@@ -83,9 +119,13 @@ void main() {
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = index_of(pixel.x, pixel.y);
-  const float sigma_in = color_sigma(i).w;
-  const float sigma_p = frame.has_sigma_plane != 0u ? sigma_in : frame.sigma;
-  const vec3 c = trmv_spatial_pixel(ivec2(frame.axis_x, frame.axis_y), frame.radius, sigma_p, pixel.x, pixel.y);
+  float sigma_in[3], sigma_p[3];
+  for (int m = 0; m < components; ++m) {
+    sigma_in[m] = color_sigma(m, i).w;
+    sigma_p[m] = frame.has_sigma_plane != 0u ? sigma_in[m] : frame.sigma;
+  }
+  vec3 c[3];
+  trmv_spatial_pixel(ivec2(frame.axis_x, frame.axis_y), frame.radius, sigma_p, pixel.x, pixel.y, c);
   // GPU only: the std plane rides in the colour record's w (spatial_shared.h); it travels on, for the next axis.
-  out_color[i] = vec4(c, sigma_in);
+  for (int m = 0; m < components; ++m) write_color(m, i, vec4(c[m], sigma_in[m]));
 }

@@ -5,10 +5,13 @@
 // core/shader_shared.h maps the types.
 //
 // Bindings (records row-major: filters/svgf/planes_shared.h):
-//   0 (c, std)   RGBA32F: the plane to filter; w the pixel's std (has_sigma_plane), else unread
-//   1 surface    RGBA32F (n, z), z = kNoSurfaceDepth without a surface (pack_surface)
-//   2 grad z     RG32F, per pixel
-//   3 (c', std)  written, std430 array of vec4: the filtered plane, w copied from the input (the next axis reads it)
+//   0-2 (c, std)   RGBA32F: the planes to filter, the first `components` of them (kTrmvSpatialComponentsConstant);
+//                  w the pixel's std (has_sigma_plane), else unread
+//   3 surface      RGBA32F (n, z), z = kNoSurfaceDepth without a surface (pack_surface)
+//   4 grad z       RG32F, per pixel
+//   5-7 (c', std)  written, std430 arrays of vec4: the filtered planes, w copied from the input (the next axis
+//                  reads it)
+// Bindings of planes beyond `components` are bound (to any buffer) and never read or written.
 #ifndef RTDR_FILTERS_TRMV_SPATIAL_SHARED_H
 #define RTDR_FILTERS_TRMV_SPATIAL_SHARED_H
 
@@ -20,11 +23,17 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..3 above): 3 inputs (storage texel buffers, or storage buffers when built for storage
+// The number of bindings (0..7 above): 5 inputs (storage texel buffers, or storage buffers when built for storage
 // inputs: core/shader_shared.h) and 1 storage buffer. gpu/svgf_shaders.cpp checks that both fit the limits the
 // context was chosen for (gpu/vulkan_context.h).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialTexelBindings = 3;
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialStorageBindings = 1;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialTexelBindings = 5;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialStorageBindings = 3;
+
+// The specialization constant that says how many planes a dispatch filters side by side (1 to 3; 1 unspecialized).
+// 0 and 1 are the workgroup shape (planes_shared.h).
+RTDR_SHARED_CONST int kTrmvSpatialComponentsConstant = 2;
+// The most planes one dispatch filters: TRMV's three components.
+RTDR_SHARED_CONST int kTrmvSpatialMaxComponents = 3;
 
 // The push-constant block: the frame's size, the axis, and the arguments trmv_spatial_axis reads
 // (filters/trmv/spatial.h) with SVGF's edge-stopping parameters (filters/svgf/svgf_params.h).
@@ -34,7 +43,7 @@ struct TrmvSpatialPush {
   RTDR_SHARED_INT axis_x;            // the step e between taps: (1, 0) horizontal, (0, 1) vertical
   RTDR_SHARED_INT axis_y;
   RTDR_SHARED_INT radius;            // r >= 0: taps k = -r .. r
-  RTDR_SHARED_UINT has_sigma_plane;  // 1: the std is binding 0's w per pixel; 0: `sigma` everywhere
+  RTDR_SHARED_UINT has_sigma_plane;  // 1: each plane's std is its record's w per pixel; 0: `sigma` everywhere
   float sigma;                       // sigma_all, the spatial std in pixels
   float sigma_z;                     // SvgfParams::sigma_z [SVGF17 Eq. 3]
   float sigma_n;                     // SvgfParams::sigma_n [SVGF17 Eq. 4]

@@ -1,6 +1,6 @@
 // The forward projection's occlusion tolerance (motion/forward_project.h), written once for C++ and for the ports
-// that make the same depth test (motion/dual.comp). Both compilers include this file; core/shader_shared.h maps
-// the types.
+// that make the same depth test (motion/dual.comp): the occlusion test of [ASVGF18 Sec. 3.3] and TRMV's
+// disocclusion test [TRMV21 Eq. 6]. Both compilers include this file; core/shader_shared.h maps the types.
 #ifndef RTDR_MOTION_FORWARD_PROJECT_SHARED_H
 #define RTDR_MOTION_FORWARD_PROJECT_SHARED_H
 

@@ -1,7 +1,7 @@
 // GLSL mirror of View::project (raster/view.cpp) and of glm's mat4 * vec4 that it and world_point
 // (raster/visibility.h) use, for the render side's Vulkan ports (#include "raster/view.glsl"; needs
 // GL_GOOGLE_include_directive). Every result is `precise`, in glm's order, so that only the division is the
-// device's: mat4 * vec4 is (c0 x + c1 y) + (c2 z + c3 w).
+// device's: mat4 * vec4 is (c0 x + c1 y) + (c2 z + c3 w). It is P_i and P_{i-1} of [TRMV21 Eq. 3, Eq. 5, Eq. 6].
 #ifndef RTDR_RASTER_VIEW_GLSL
 #define RTDR_RASTER_VIEW_GLSL
 

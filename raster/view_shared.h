@@ -1,6 +1,7 @@
 // What a port reads of a View (raster/view.h), written once for C++ and GLSL: the record that View::project needs.
 // The GLSL side of View::project is raster/view.glsl; the C++ side fills the record with view_record(). Both
-// compilers include this file; core/shader_shared.h maps the types.
+// compilers include this file; core/shader_shared.h maps the types. The projection is P_i and P_{i-1} of the motion
+// vectors' equations [TRMV21 Eq. 3, Eq. 5, Eq. 6].
 #ifndef RTDR_RASTER_VIEW_SHARED_H
 #define RTDR_RASTER_VIEW_SHARED_H
 

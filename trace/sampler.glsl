@@ -1,7 +1,7 @@
 // GLSL mirror of trace/sampler.h's integer hashes and of SamplePair (trace/sampler.cpp), for the render side's
 // Vulkan ports (#include "trace/sampler.glsl"; needs GL_GOOGLE_include_directive). Integer operations only, with
 // the constants of trace/sampler_shared.h: every result is the C++ one bit for bit (uint arithmetic wraps modulo
-// 2^32 in both).
+// 2^32 in both), so a seed replays the same sample [ASVGF18 Sec. 3.2, Eq. 6].
 #ifndef RTDR_TRACE_SAMPLER_GLSL
 #define RTDR_TRACE_SAMPLER_GLSL
 

@@ -1,6 +1,7 @@
 // The constants of trace/sampler.h's integer hashes, written once for C++ (hash_u32, hash_combine) and GLSL
 // (trace/sampler.glsl, for the render side's ports). Plain preprocessor with `u`-suffixed literals, which both
-// languages read as 32-bit unsigned integers, so a port's hash is the C++ one bit for bit.
+// languages read as 32-bit unsigned integers, so a port's hash is the C++ one bit for bit: the same seed gives the
+// same sample on both sides [ASVGF18 Sec. 3.2, Eq. 6].
 #ifndef RTDR_TRACE_SAMPLER_SHARED_H
 #define RTDR_TRACE_SAMPLER_SHARED_H
 

@@ -455,3 +455,40 @@ TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as
     CHECK(std::count(wrong.err.begin(), wrong.err.end(), '\n') == 1);
   }
 }
+
+// rtdr compare and rtdr filter --backend vulkan for the other two methods with ports, as a user runs them: asvgf on
+// frames rendered with gradient samples, trmv on frames with the shading term. Every channel of the golden dump,
+// the colour and the display are reported for every frame, and the colour is within the guard the pipeline tests
+// hold it to (this file's A-SVGF test, tests/gpu_trmv_vulkan_test.cpp: SVGF's bound, 5e-3).
+TEST_CASE("rtdr compare and rtdr filter --backend vulkan run asvgf and trmv on their ports") {
+  const auto context = validated_context();
+  using namespace rtdr::cli;
+  const std::string env = std::string("RTDR_VK_INPUTS=") + shader_inputs_name(context->shader_inputs()) +
+                          " RTDR_VK_ILLUMINATION=" + illumination_records_name(context->illumination_records());
+  const fs::path dir = scratch("rtdr_gpu_svgf_test", std::string("methods_") +
+                                                         shader_inputs_name(context->shader_inputs()) + "_" +
+                                                         illumination_records_name(context->illumination_records()));
+  const std::map<std::string, std::pair<std::string, double>> methods = {
+      {"asvgf", {"--scene pillars --gradients", pipeline_rel_error(*context)}},
+      {"trmv", {"--scene fence --shading-samples 4", 5e-3}}};
+  for (const auto& [method, how] : methods) {
+    INFO(method);
+    const std::string in = (dir / (method + "_in")).string(), csv = (dir / (method + ".csv")).string();
+    REQUIRE(run_rtdr("render " + how.first + " --frames 0-2 --size 40x24 --out " + in, dir).exit_code == 0);
+    const RunResult r = run_rtdr("compare --method " + method + " --in " + in + " --csv " + csv, dir, env);
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto rows = read_compare_csv(csv);
+    const size_t dumped = make_method(method)->dump_channels().size();
+    CHECK(rows.size() == 3 * (dumped + 6));  // 3 frames x (the dump's channels, colour and display)
+    for (int f = 0; f < 3; ++f)
+      for (const std::string channel : {"color.R", "color.G", "color.B"}) {
+        INFO("frame " << f << " " << channel);
+        CHECK(std::stod(rows.at({f, channel})[7]) <= how.second);  // max_rel, relative to max(|cpu|, 1e-2)
+      }
+    const std::string out = (dir / (method + "_vulkan")).string();
+    REQUIRE(run_rtdr("filter --backend vulkan --method " + method + " --in " + in + " --out " + out, dir, env)
+                .exit_code == 0);
+    CHECK(fs::exists(frame_path(out, 2, "exr")));
+  }
+}

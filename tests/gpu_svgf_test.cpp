@@ -374,6 +374,16 @@ TEST_CASE("the Vulkan pipeline follows the golden A-SVGF over 8 frames of pillar
 namespace {
 
 // The rows of `rtdr compare --csv`, by (frame, channel).
+// The device's build as the environment names it to rtdr (RTDR_VK_INPUTS, RTDR_VK_ILLUMINATION), and as a folder name.
+std::string build_env(const VulkanContext& context) {
+  return std::string("RTDR_VK_INPUTS=") + shader_inputs_name(context.shader_inputs()) +
+         " RTDR_VK_ILLUMINATION=" + illumination_records_name(context.illumination_records());
+}
+std::string build_name(const VulkanContext& context) {
+  return std::string(shader_inputs_name(context.shader_inputs())) + "_" +
+         illumination_records_name(context.illumination_records());
+}
+
 std::map<std::pair<int, std::string>, std::vector<std::string>> read_compare_csv(const std::string& path) {
   std::ifstream in(path);
   std::string line;
@@ -397,11 +407,8 @@ std::map<std::pair<int, std::string>, std::vector<std::string>> read_compare_csv
 TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as their own outputs show") {
   const auto context = validated_context();
   using namespace rtdr::cli;
-  const std::string env = std::string("RTDR_VK_INPUTS=") + shader_inputs_name(context->shader_inputs()) +
-                          " RTDR_VK_ILLUMINATION=" + illumination_records_name(context->illumination_records());
-  const fs::path dir = scratch("rtdr_gpu_svgf_test", std::string("compare_") +
-                                                         shader_inputs_name(context->shader_inputs()) + "_" +
-                                                         illumination_records_name(context->illumination_records()));
+  const std::string env = build_env(*context);
+  const fs::path dir = rtdr::cli::scratch("rtdr_gpu_svgf_test", "compare_" + build_name(*context));
   const std::string in = (dir / "in").string(), csv = (dir / "compare.csv").string();
   REQUIRE(run_rtdr("render --scene pillars --frames 0-2 --size 40x24 --out " + in, dir).exit_code == 0);
 
@@ -463,11 +470,8 @@ TEST_CASE("rtdr compare reports where the filter's two back ends differ most, as
 TEST_CASE("rtdr compare and rtdr filter --backend vulkan run asvgf and trmv on their ports") {
   const auto context = validated_context();
   using namespace rtdr::cli;
-  const std::string env = std::string("RTDR_VK_INPUTS=") + shader_inputs_name(context->shader_inputs()) +
-                          " RTDR_VK_ILLUMINATION=" + illumination_records_name(context->illumination_records());
-  const fs::path dir = scratch("rtdr_gpu_svgf_test", std::string("methods_") +
-                                                         shader_inputs_name(context->shader_inputs()) + "_" +
-                                                         illumination_records_name(context->illumination_records()));
+  const std::string env = build_env(*context);
+  const fs::path dir = rtdr::cli::scratch("rtdr_gpu_svgf_test", "methods_" + build_name(*context));
   const std::map<std::string, std::pair<std::string, double>> methods = {
       {"asvgf", {"--scene pillars --gradients", pipeline_rel_error(*context)}},
       {"trmv", {"--scene fence --shading-samples 4", 5e-3}}};

@@ -14,22 +14,9 @@ namespace rtdr {
 GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& noisy, const UIntPlane& source,
                                     const FloatPlane& prev_luminance, const SurfacePlanes& surface, int s,
                                     double* ms) {
-  // The checks of gradient_image (filters/asvgf/gradient_image.cpp), with its messages.
-  const int w = noisy.width, h = noisy.height;
-  if (s < 1) throw Error("gradient image: stratum size " + std::to_string(s) + " < 1");
-  const auto sized = [&](const auto& p) { return p.width == w && p.height == h; };
-  if (!sized(source) || !sized(prev_luminance) || !sized(surface.depth) || !sized(surface.mesh) ||
-      !sized(surface.depth_grad) || !sized(surface.normal))
-    throw Error("gradient image: the gradient planes and the G-buffer are not all " + std::to_string(w) + "x" +
-                std::to_string(h));
-  const int sw = (w + s - 1) / s, sh = (h + s - 1) / s;  // partial strata at the right and bottom
-  GradientImage g;
-  g.stratum_size = s;
-  g.values = {FloatPlane(sw, sh), FloatPlane(sw, sh), FloatPlane(sw, sh), FloatPlane(sw, sh)};
-  g.surface.depth = FloatPlane(sw, sh);
-  g.surface.depth_grad = Vec2Plane(sw, sh);
-  g.surface.normal = RgbPlane(sw, sh);
-  g.surface.mesh = UIntPlane(sw, sh);
+  // gradient_image's checks, and the grid it fills.
+  GradientImage g = gradient_image_grid(noisy, source, prev_luminance, surface, s);
+  const int w = noisy.width, h = noisy.height, sw = g.values.delta.width, sh = g.values.delta.height;
   if (g.values.delta.data.empty()) return g;
 
   const auto noisy_prev = plane_buffer(context, w, h, TexelFormat::RGBA32F),

@@ -173,10 +173,10 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   }
   const int cur = frames_ & 1, prev = cur ^ 1;
   const bool has_history = frames_ > 0;
-  // A-SVGF's planes, for this frame's stratum size.
+  // A-SVGF's planes, for this frame's size and stratum size (all 0 without A-SVGF).
   const int stratum_size = options_.adaptive ? frame_stratum_size(in, options_.name) : 0;
-  if (!gradients_ || gradients_->width != (options_.adaptive ? w : 0) || gradients_->height != (options_.adaptive ? h : 0) ||
-      gradients_->s != stratum_size)
+  const int gw = stratum_size > 0 ? w : 0, gh = stratum_size > 0 ? h : 0;
+  if (!gradients_ || gradients_->width != gw || gradients_->height != gh || gradients_->s != stratum_size)
     gradients_ = options_.adaptive ? std::make_unique<GradientBuffers>(context_, w, h, stratum_size)
                                    : std::make_unique<GradientBuffers>(context_);
   GradientBuffers& gb = *gradients_;
@@ -184,8 +184,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // 1. Upload: the host packs this frame's planes into the device's records.
   const auto t0 = std::chrono::steady_clock::now();
   const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  pack_illumination(kDirectStream, rgb_plane(in, "direct"), nullptr, *b.noisy);
-  pack_illumination(kIndirectStream, rgb_plane(in, "indirect"), nullptr, *b.noisy);
+  const RgbPlane noisy[2] = {rgb_plane(in, "direct"), rgb_plane(in, "indirect")};  // [kDirectStream], [kIndirectStream]
+  for (const int s : {kDirectStream, kIndirectStream}) pack_illumination(s, noisy[s], nullptr, *b.noisy);
   pack_rgb(rgb_plane(in, "albedo"), *b.albedo);
   pack_rgb(rgb_plane(in, "emission"), *b.emission);
   pack_surface(surface, *b.surface[cur]);
@@ -194,7 +194,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   pack_vec2(surface.motion, *b.motion);
   if (options_.adaptive) {  // (C_i, gradient.prev_<stream>) per stream, and gradient.source (trace/gradients.h)
     for (const int s : {kDirectStream, kIndirectStream}) {
-      pack_rgb(rgb_plane(in, std::string(stream_name(s))), *gb.noisy_prev[s]);
+      pack_rgb(noisy[s], *gb.noisy_prev[s]);
       const FloatPlane& prev_luminance = in.float_channel("gradient.prev_" + std::string(stream_name(s)));
       float* records = gb.noisy_prev[s]->data();
       for (size_t i = 0; i < prev_luminance.data.size(); ++i) records[4 * i + 3] = prev_luminance.data[i];

@@ -16,22 +16,11 @@ namespace {
 
 static_assert(kTrmvFalloffHalfPi == glm::half_pi<float>(), "the shader's pi/2 is the golden pass's float");
 
-// The size checks of trmv_falloff_pass (filters/trmv/falloff.cpp's check_sizes), with its messages.
-void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
-  const int w = r.position.width, h = r.position.height;
-  if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(shadow.motion, w, h) ||
-      !empty_or_size(shadow.valid, w, h))
-    throw Error("trmv falloff pass: the receiver's and the shadow motion's planes are not all " + std::to_string(w) +
-                "x" + std::to_string(h));
-  if (prev.position.width != 0 && !has_size(prev.mesh, prev.position.width, prev.position.height))
-    throw Error("trmv falloff pass: the previous id.mesh is not the previous position's size");
-}
-
 }  // namespace
 
 TrmvFalloffOutput trmv_falloff_vulkan(VulkanContext& context, const TrmvReceiver& receiver, const TrmvMotion& shadow,
                                       const TrmvPreviousPositions& prev, const TrmvParams& params, double* ms) {
-  check_sizes(receiver, shadow, prev);
+  check_trmv_falloff_sizes(receiver, shadow, prev);  // trmv_falloff_pass's checks
   const int w = receiver.position.width, h = receiver.position.height;
   TrmvFalloffOutput out{FloatPlane(w, h), FloatPlane(w, h)};
   if (out.theta.data.empty()) return out;

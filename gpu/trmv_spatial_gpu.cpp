@@ -14,15 +14,7 @@ namespace rtdr {
 
 namespace {
 
-// The size checks of trmv_spatial_axis and trmv_cleanup_pass (filters/trmv/spatial.cpp, filters/trmv/cleanup.cpp),
-// with their messages.
-void check_surface(int w, int h, const SurfacePlanes& s, const char* what) {
-  if (!has_size(s.depth, w, h) || !has_size(s.depth_grad, w, h) || !has_size(s.normal, w, h) ||
-      !has_size(s.mesh, w, h))
-    throw Error(std::string(what) + ": the G-buffer planes are not all " + std::to_string(w) + "x" +
-                std::to_string(h) + " like the filtered plane");
-}
-
+// The ports' own check: a radius the shader's loop can run.
 void check_radius(int radius, const char* what) {
   if (radius < 0) throw Error(std::string(what) + ": the radius must be >= 0, got " + std::to_string(radius));
 }
@@ -47,7 +39,7 @@ Guides pack_guides(VulkanContext& context, const SurfacePlanes& s, int w, int h)
 RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s,
                              const TrmvParams& params, const SvgfParams& edges, double* ms) {
   const int w = c.width, h = c.height;
-  check_surface(w, h, s, "trmv spatial filter");
+  check_trmv_surface_sizes(w, h, s, "trmv spatial filter");
   check_radius(params.spatial_radius, "trmv_spatial_vulkan");
   if (c.data.empty()) return RgbPlane(w, h);
   const Guides g = pack_guides(context, s, w, h);
@@ -74,10 +66,8 @@ TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporal
                                       const FloatPlane& alpha_v, const SurfacePlanes& s, const TrmvParams& params,
                                       const SvgfParams& edges, double* ms) {
   const int w = temporal.color.width, h = temporal.color.height;
-  if (!has_size(temporal.fetched, w, h) || !has_size(temporal.clamped, w, h) || !empty_or_size(alpha_v, w, h))
-    throw Error("trmv clean-up pass: the histories and alpha^V are not all " + std::to_string(w) + "x" +
-                std::to_string(h) + " like cbar_i");
-  check_surface(w, h, s, "trmv spatial filter");
+  check_trmv_cleanup_sizes(temporal, alpha_v);  // trmv_cleanup_pass's checks
+  check_trmv_surface_sizes(w, h, s, "trmv spatial filter");
   const int radius = (params.cleanup_size - 1) / 2;
   check_radius(radius, "trmv_cleanup_vulkan");
   TrmvCleanupOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};

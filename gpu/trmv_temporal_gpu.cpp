@@ -12,19 +12,6 @@ namespace rtdr {
 
 namespace {
 
-// The size checks of trmv_temporal_pass (filters/trmv/temporal.cpp's check_sizes), with its messages.
-void check_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion, const TrmvHistory& prev,
-                 const FloatPlane& alpha) {
-  const int w = filtered.width, h = filtered.height;
-  if (!has_size(mesh, w, h) || !has_size(motion.motion, w, h) || !empty_or_size(motion.valid, w, h) ||
-      !empty_or_size(alpha, w, h) || !empty_or_size(motion.reshaded, w, h) ||
-      motion.reshaded_valid.width != motion.reshaded.width || motion.reshaded_valid.height != motion.reshaded.height)
-    throw Error("trmv temporal pass: the mesh, motion, validity, alpha and re-shaded planes are not all " +
-                std::to_string(w) + "x" + std::to_string(h) + " like c~");
-  if (prev.color.width != 0 && !has_size(prev.mesh, prev.color.width, prev.color.height))
-    throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
-}
-
 // Channel w of record i of a buffer of 4-float records (pack_rgb wrote 0 there).
 void set_w(GpuBuffer& records, size_t i, float w) { records.data()[4 * i + 3] = w; }
 
@@ -33,7 +20,7 @@ void set_w(GpuBuffer& records, size_t i, float w) { records.data()[4 * i + 3] = 
 TrmvTemporalOutput trmv_temporal_vulkan(VulkanContext& context, const RgbPlane& filtered, const UIntPlane& mesh,
                                         const TrmvMotion& motion, const TrmvHistory& prev, const FloatPlane& alpha,
                                         const TrmvParams& params, double* ms) {
-  check_sizes(filtered, mesh, motion, prev, alpha);
+  check_trmv_temporal_sizes(filtered, mesh, motion, prev, alpha);  // trmv_temporal_pass's checks
   if (params.clamp_radius < 0)
     throw Error("trmv_temporal_vulkan: clamp_radius must be >= 0, got " + std::to_string(params.clamp_radius));
   const int w = filtered.width, h = filtered.height;

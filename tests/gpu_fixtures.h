@@ -8,6 +8,7 @@
 #include "filters/surface_planes.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/vulkan_context.h"
+#include "raster/view.h"
 #include "test_skip.h"
 
 #include <catch2/catch.hpp>
@@ -22,6 +23,26 @@
 #include <string>
 
 namespace rtdr::gpu_test {
+
+// The simulated devices of the motion ports' tests (a device as far from C++ as Vulkan lets it be, no Vulkan
+// needed): results moved a few ulps off the correctly rounded ones, either way, as a seeded device chooses.
+class UlpSkew {
+ protected:
+  explicit UlpSkew(unsigned seed) : rng_(seed) {}
+  // x moved by up to `most` ulps, either way, as the device chooses.
+  float skew(float x, int most) {
+    const int ulps = std::uniform_int_distribution<int>(-most, most)(rng_);
+    for (int k = 0; k < std::abs(ulps); ++k) x = std::nextafter(x, ulps > 0 ? HUGE_VALF : -HUGE_VALF);
+    return x;
+  }
+  // View::project with its division 2 ulps off either way (Vulkan allows 2.5).
+  glm::vec3 project(const View& v, const glm::vec3& world) {
+    const glm::vec4 clip = v.world_to_clip * glm::vec4(world, 1.0f);
+    const glm::vec2 ndc(skew(clip.x / clip.w, 2), skew(clip.y / clip.w, 2));
+    return {(ndc.x * 0.5f + 0.5f) * float(v.width), (0.5f - ndc.y * 0.5f) * float(v.height), clip.w};
+  }
+  std::mt19937 rng_;
+};
 
 // The device for these tests, with the validation layer. Where there is none, the calling test case is skipped
 // (tests/test_skip.h): ctest reports it as skipped, not passed. Every test calling it runs four times (GENERATE):
@@ -96,6 +117,25 @@ inline SurfacePlanes blank_surface(int w, int h) {
   s.normal = RgbPlane(w, h);
   s.mesh = UIntPlane(w, h);
   s.motion = Vec2Plane(w, h);
+  return s;
+}
+
+// A random G-buffer for the bilateral filters' tests (TRMV's spatial filter and clean-up): depth in [2, 3] rising
+// along x with a step of 0.5 (past a third of the width, or past half the height); gradients that sometimes match
+// it; unit normals spread around +z (a few facing away); a few meshes and about 1 pixel in 8 without a surface.
+inline SurfacePlanes random_bilateral_surface(std::mt19937& rng, int w, int h, bool step_along_x) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  SurfacePlanes s = blank_surface(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool past_step = step_along_x ? x > w / 3 : y > h / 2;
+      s.depth.at(x, y) = 2.0f + 0.02f * float(x) + 0.05f * u(rng) + (past_step ? 0.5f : 0.0f);
+      s.depth_grad.at(x, y) = u(rng) < 0.5f ? glm::vec2(0.02f, 0.0f) : glm::vec2(0.1f * u(rng) - 0.05f, 0.01f * u(rng));
+      const float spread = u(rng) < 0.05f ? 3.0f : 0.3f;
+      s.normal.at(x, y) = glm::normalize(glm::vec3(spread * (u(rng) - 0.5f), spread * (u(rng) - 0.5f), 1.0f));
+      s.mesh.at(x, y) = u(rng) < 0.125f ? kInvalidId : uint32_t(3.0f * u(rng));
+      if (s.mesh.at(x, y) == kInvalidId) s.depth.at(x, y) = 0.0f;
+    }
   return s;
 }
 

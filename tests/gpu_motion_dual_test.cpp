@@ -138,9 +138,9 @@ std::vector<glm::vec2> perturbed(std::vector<glm::vec2> motion, int width, uint3
 
 // A device as far from C++ as Vulkan lets it be, simulated: dual_motion_pixel's operations in the golden order,
 // View::project's division rounded up to 2 ulps off the correctly rounded result, either way (Vulkan allows 2.5).
-class SkewedDevice {
+class SkewedDevice : public UlpSkew {
  public:
-  explicit SkewedDevice(unsigned seed) : rng_(seed) {}
+  explicit SkewedDevice(unsigned seed) : UlpSkew(seed) {}
 
   DualMotion pixel(const Scene& scene, const FrameGeometry& g, const VisibilityBuffer& prev_vis, int x, int y,
                    glm::vec2 surface_motion) {
@@ -166,21 +166,6 @@ class SkewedDevice {
     out.disoccluded = true;
     return out;
   }
-
- private:
-  // x moved by up to `most` ulps, either way, as the device chooses.
-  float skew(float x, int most) {
-    const int ulps = std::uniform_int_distribution<int>(-most, most)(rng_);
-    for (int k = 0; k < std::abs(ulps); ++k) x = std::nextafter(x, ulps > 0 ? HUGE_VALF : -HUGE_VALF);
-    return x;
-  }
-  glm::vec3 project(const View& v, const glm::vec3& world) {
-    const glm::vec4 clip = v.world_to_clip * glm::vec4(world, 1.0f);
-    const glm::vec2 ndc(skew(clip.x / clip.w, 2), skew(clip.y / clip.w, 2));
-    return {(ndc.x * 0.5f + 0.5f) * float(v.width), (0.5f - ndc.y * 0.5f) * float(v.height), clip.w};
-  }
-
-  std::mt19937 rng_;
 };
 
 }  // namespace

@@ -328,9 +328,9 @@ void random_splat_inputs(std::mt19937& rng, int w, int h, std::vector<ShadowMoti
 // A device as far from C++ as Vulkan lets it be, simulated: shadow_motion_pixel's operations in the golden order,
 // each division and square root rounded `ulps()` ulps off the correctly rounded result (Vulkan allows 2.5 ulp for a
 // division, 4.5 for 1 / inversesqrt; C++'s is the correctly rounded one).
-class SkewedDevice {
+class SkewedDevice : public UlpSkew {
  public:
-  explicit SkewedDevice(unsigned seed) : rng_(seed) {}
+  explicit SkewedDevice(unsigned seed) : UlpSkew(seed) {}
 
   ShadowMotion pixel(const ShadowRay& r, const std::vector<InstanceMotion>& to_previous, const View& view,
                      const View& prev_view) {
@@ -352,12 +352,6 @@ class SkewedDevice {
   }
 
  private:
-  // x moved by up to `most` ulps, either way, as the device chooses.
-  float skew(float x, int most) {
-    const int ulps = std::uniform_int_distribution<int>(-most, most)(rng_);
-    for (int k = 0; k < std::abs(ulps); ++k) x = std::nextafter(x, ulps > 0 ? HUGE_VALF : -HUGE_VALF);
-    return x;
-  }
   bool intersect(const glm::vec3& l, const glm::vec3& b, const glm::vec3& s, const glm::vec3& n, glm::vec3& point) {
     const glm::vec3 lb = b - l;
     const float n_dot_lb = glm::dot(n, lb);
@@ -367,13 +361,7 @@ class SkewedDevice {
     point = l + t * lb;
     return true;
   }
-  glm::vec3 project(const View& v, const glm::vec3& world) {
-    const glm::vec4 clip = v.world_to_clip * glm::vec4(world, 1.0f);
-    const glm::vec2 ndc(skew(clip.x / clip.w, 2), skew(clip.y / clip.w, 2));
-    return {(ndc.x * 0.5f + 0.5f) * float(v.width), (0.5f - ndc.y * 0.5f) * float(v.height), clip.w};
-  }
 
-  std::mt19937 rng_;
 };
 
 }  // namespace

@@ -93,21 +93,6 @@ void check_port(VulkanContext& context, const TrmvTemporalOutput& temporal, cons
   CHECK(mismatched == 0);
 }
 
-SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  SurfacePlanes s = blank_surface(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      s.depth.at(x, y) = 2.0f + 0.02f * float(x) + 0.05f * u(rng) + (y > h / 2 ? 0.5f : 0.0f);
-      s.depth_grad.at(x, y) = u(rng) < 0.5f ? glm::vec2(0.02f, 0.0f) : glm::vec2(0.1f * u(rng) - 0.05f, 0.01f * u(rng));
-      const float spread = u(rng) < 0.05f ? 3.0f : 0.3f;
-      s.normal.at(x, y) = glm::normalize(glm::vec3(spread * (u(rng) - 0.5f), spread * (u(rng) - 0.5f), 1.0f));
-      s.mesh.at(x, y) = u(rng) < 0.125f ? kInvalidId : uint32_t(3.0f * u(rng));
-      if (s.mesh.at(x, y) == kInvalidId) s.depth.at(x, y) = 0.0f;
-    }
-  return s;
-}
-
 // A temporal output: cbar_i and the fetched history random in [0, 4]; the clamp moved 30% of the histories (w_C > 0,
 // large where the history is dark: some stds reach the cap), the rest unchanged (w_C = 0).
 TrmvTemporalOutput random_temporal(std::mt19937& rng, int w, int h) {
@@ -142,7 +127,7 @@ TEST_CASE("the TRMV clean-up port matches trmv_cleanup_pass on random planes of 
   const auto context = validated_context();
   std::mt19937 rng(78);
   const int w = 41, h = 29;  // a multiple of neither workgroup shape: the last tiles overhang
-  const SurfacePlanes s = random_surface(rng, w, h);
+  const SurfacePlanes s = random_bilateral_surface(rng, w, h, false);
   const TrmvTemporalOutput temporal = random_temporal(rng, w, h);
   const FloatPlane alpha_v = random_alpha_v(rng, w, h, TrmvParams{}.alpha);
   const SvgfParams edges;

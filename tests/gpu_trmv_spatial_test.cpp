@@ -88,30 +88,13 @@ void check_port(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& 
   if (identity) CHECK(max_difference(gpu, c) == 0.0);
 }
 
-// Random G-buffer: depth in [2, 3] rising along x, with a step at a third of the width; gradients that sometimes
-// match it; unit normals spread around +z (a few facing away); a few meshes and about 1 pixel in 8 without a surface.
-SurfacePlanes random_surface(std::mt19937& rng, int w, int h) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  SurfacePlanes s = blank_surface(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      s.depth.at(x, y) = 2.0f + 0.02f * float(x) + 0.05f * u(rng) + (x > w / 3 ? 0.5f : 0.0f);
-      s.depth_grad.at(x, y) = u(rng) < 0.5f ? glm::vec2(0.02f, 0.0f) : glm::vec2(0.1f * u(rng) - 0.05f, 0.01f * u(rng));
-      const float spread = u(rng) < 0.05f ? 3.0f : 0.3f;
-      s.normal.at(x, y) = glm::normalize(glm::vec3(spread * (u(rng) - 0.5f), spread * (u(rng) - 0.5f), 1.0f));
-      s.mesh.at(x, y) = u(rng) < 0.125f ? kInvalidId : uint32_t(3.0f * u(rng));
-      if (s.mesh.at(x, y) == kInvalidId) s.depth.at(x, y) = 0.0f;
-    }
-  return s;
-}
-
 }  // namespace
 
 TEST_CASE("the TRMV spatial port matches trmv_spatial_pass on random planes of an odd size") {
   const auto context = validated_context();
   std::mt19937 rng(31);
   const int w = 41, h = 29;  // a multiple of neither workgroup shape: the last tiles overhang
-  const SurfacePlanes s = random_surface(rng, w, h);
+  const SurfacePlanes s = random_bilateral_surface(rng, w, h, true);
   const RgbPlane c = random_plane(rng, w, h, 0.0f, 4.0f);
   const SvgfParams edges;
   // The paper's 31x31 with std 5, a 7x7, and the two identities: std 0 and radius 0.
@@ -170,7 +153,7 @@ TEST_CASE("three planes filtered side by side give each plane's result alone, bi
   const auto context = validated_context();
   std::mt19937 rng(11);
   const int w = 37, h = 23;
-  const SurfacePlanes s = random_surface(rng, w, h);
+  const SurfacePlanes s = random_bilateral_surface(rng, w, h, true);
   const auto surface = plane_buffer(*context, w, h, TexelFormat::RGBA32F),
              depth_grad = plane_buffer(*context, w, h, TexelFormat::RG32F);
   pack_surface(s, *surface);

@@ -63,12 +63,13 @@ GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source,
   return out;
 }
 
-GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
-                             const SurfacePlanes& surface, int s) {
+GradientImage gradient_image_grid(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
+                                  const SurfacePlanes& surface, int s) {
   const int w = noisy.width, h = noisy.height;
   if (s < 1) throw Error("gradient image: stratum size " + std::to_string(s) + " < 1");
   const auto sized = [&](const auto& p) { return p.width == w && p.height == h; };
-  if (!sized(source) || !sized(prev_luminance) || !sized(surface.depth) || !sized(surface.mesh))
+  if (!sized(source) || !sized(prev_luminance) || !sized(surface.depth) || !sized(surface.mesh) ||
+      !sized(surface.depth_grad) || !sized(surface.normal))
     throw Error("gradient image: the gradient planes and the G-buffer are not all " + std::to_string(w) + "x" +
                 std::to_string(h));
   const int sw = (w + s - 1) / s, sh = (h + s - 1) / s;  // partial strata at the right and bottom
@@ -79,6 +80,13 @@ GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, con
   g.surface.depth_grad = Vec2Plane(sw, sh);
   g.surface.normal = RgbPlane(sw, sh);
   g.surface.mesh = UIntPlane(sw, sh);
+  return g;
+}
+
+GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
+                             const SurfacePlanes& surface, int s) {
+  GradientImage g = gradient_image_grid(noisy, source, prev_luminance, surface, s);
+  const int sw = g.values.delta.width, sh = g.values.delta.height;
   parallel_rows(sh, [&](int sy) {
     for (int sx = 0; sx < sw; ++sx) {
       const GradientStratum r = gradient_stratum(noisy, source, prev_luminance, surface, s, sx, sy);
@@ -101,7 +109,8 @@ int frame_stratum_size(const Frame& frame, const std::string& method) {
   const auto it = frame.attributes.find("rtdr.gradient.stratum_size");
   if (it == frame.attributes.end())
     throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
-                " needs frames rendered with gradient samples (rtdr render --gradients): no rtdr.gradient.stratum_size");
+                " needs frames rendered with gradient samples (rtdr render --gradients): no "
+                "rtdr.gradient.stratum_size");
   int s = 0;
   const char *first = it->second.data(), *last = first + it->second.size();
   const auto [end, ec] = std::from_chars(first, last, s);

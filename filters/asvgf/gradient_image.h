@@ -55,6 +55,12 @@ struct GradientStratum {
 GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
                                  const SurfacePlanes& surface, int s, int sx, int sy, Probe* probe = nullptr);
 
+// The stratum grid's planes for these inputs, all 0, with s: ceil(w / s) x ceil(h / s) strata. Throws rtdr::Error
+// when the planes' sizes disagree or s < 1: the checks of gradient_image, which its port makes too
+// (gpu/asvgf_gradient_gpu.h).
+GradientImage gradient_image_grid(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
+                                  const SurfacePlanes& surface, int s);
+
 // Every stratum (parallel over stratum rows, deterministic). Throws rtdr::Error when the planes' sizes disagree
 // or s < 1.
 GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,

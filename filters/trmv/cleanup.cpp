@@ -45,12 +45,17 @@ TrmvCleanupWeights trmv_cleanup_weights_pixel(const TrmvTemporalOutput& temporal
   return out;
 }
 
-TrmvCleanupOutput trmv_cleanup_pass(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v,
-                                    const SurfacePlanes& s, const TrmvParams& params, const SvgfParams& edges) {
+void check_trmv_cleanup_sizes(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v) {
   const int w = temporal.color.width, h = temporal.color.height;
   if (!has_size(temporal.fetched, w, h) || !has_size(temporal.clamped, w, h) || !empty_or_size(alpha_v, w, h))
     throw Error("trmv clean-up pass: the histories and alpha^V are not all " + std::to_string(w) + "x" +
                 std::to_string(h) + " like cbar_i");
+}
+
+TrmvCleanupOutput trmv_cleanup_pass(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v,
+                                    const SurfacePlanes& s, const TrmvParams& params, const SvgfParams& edges) {
+  check_trmv_cleanup_sizes(temporal, alpha_v);
+  const int w = temporal.color.width, h = temporal.color.height;
   TrmvCleanupOutput out{RgbPlane(), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   parallel_rows(h, [&](int y) {
     for (int x = 0; x < w; ++x) {

@@ -64,6 +64,10 @@ struct TrmvCleanupOutput {
 TrmvCleanupWeights trmv_cleanup_weights_pixel(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v,
                                               const TrmvParams& params, int x, int y, Probe* probe = nullptr);
 
+// Throws rtdr::Error unless the fetched and clamped histories (and alpha^V, when given) have cbar_i's size: the
+// clean-up's check, which its port makes too (gpu/trmv_spatial_gpu.h).
+void check_trmv_cleanup_sizes(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v);
+
 // Eq. 7-8 at every pixel, then the two 1-D passes (parallel over rows, deterministic). Throws rtdr::Error when
 // the planes' sizes disagree.
 TrmvCleanupOutput trmv_cleanup_pass(const TrmvTemporalOutput& temporal, const FloatPlane& alpha_v,

@@ -19,7 +19,15 @@ namespace {
 // it is 1e-6: filters/trmv/falloff_shared.h, which the Vulkan port (filters/trmv/falloff.comp) reads too.
 constexpr float kFalloffSamePointRelative = kTrmvFalloffSamePointRelative;
 
-void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
+// No Eq. 4 evidence: theta = pi/2, alpha^V = alpha (falloff.h).
+TrmvFalloffPixel no_evidence(float alpha, Probe* probe) {
+  note(probe, "alpha^V = alpha", alpha, "no evidence for [TRMV21 Eq. 4]");
+  return {glm::half_pi<float>(), alpha};
+}
+
+}  // namespace
+
+void check_trmv_falloff_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
   const int w = r.position.width, h = r.position.height;
   if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(shadow.motion, w, h) ||
       !empty_or_size(shadow.valid, w, h))
@@ -28,14 +36,6 @@ void check_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPrev
   if (prev.position.width != 0 && !has_size(prev.mesh, prev.position.width, prev.position.height))
     throw Error("trmv falloff pass: the previous id.mesh is not the previous position's size");
 }
-
-// No Eq. 4 evidence: theta = pi/2, alpha^V = alpha (falloff.h).
-TrmvFalloffPixel no_evidence(float alpha, Probe* probe) {
-  note(probe, "alpha^V = alpha", alpha, "no evidence for [TRMV21 Eq. 4]");
-  return {glm::half_pi<float>(), alpha};
-}
-
-}  // namespace
 
 float trmv_falloff_gaussian(float x, float sigma) {
   // G(x; 0, sigma) = exp(-x^2 / (2 sigma^2)), "with its peak value normalized to 1" [TRMV21 Eq. 4].
@@ -93,7 +93,7 @@ TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMoti
 
 TrmvFalloffOutput trmv_falloff_pass(const TrmvReceiver& receiver, const TrmvMotion& shadow,
                                     const TrmvPreviousPositions& prev, const TrmvParams& params) {
-  check_sizes(receiver, shadow, prev);
+  check_trmv_falloff_sizes(receiver, shadow, prev);
   const int w = receiver.position.width, h = receiver.position.height;
   TrmvFalloffOutput out{FloatPlane(w, h), FloatPlane(w, h)};
   parallel_rows(h, [&](int y) {

@@ -81,6 +81,11 @@ TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMoti
                                     const TrmvPreviousPositions& prev, const TrmvParams& params, int x, int y,
                                     Probe* probe = nullptr);
 
+// Throws rtdr::Error unless the receiver's and the shadow motion's planes share a size and the previous id.mesh has
+// the previous positions': the checks of trmv_falloff_pass, which its port makes too (gpu/trmv_falloff_gpu.h).
+void check_trmv_falloff_sizes(const TrmvReceiver& receiver, const TrmvMotion& shadow,
+                              const TrmvPreviousPositions& prev);
+
 // trmv_falloff_pixel at every pixel (parallel over rows, deterministic). Throws rtdr::Error when the planes'
 // sizes disagree.
 TrmvFalloffOutput trmv_falloff_pass(const TrmvReceiver& receiver, const TrmvMotion& shadow,

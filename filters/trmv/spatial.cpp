@@ -10,17 +10,13 @@
 #include <string>
 
 namespace rtdr {
-namespace {
-
-void check_sizes(int w, int h, const SurfacePlanes& s, const char* what) {
+void check_trmv_surface_sizes(int w, int h, const SurfacePlanes& s, const char* what) {
   const bool ok = has_size(s.depth, w, h) && has_size(s.depth_grad, w, h) && has_size(s.normal, w, h) &&
                   has_size(s.mesh, w, h);
   if (!ok)
     throw Error(std::string(what) + ": the G-buffer planes are not all " + std::to_string(w) + "x" +
                 std::to_string(h) + " like the filtered plane");
 }
-
-}  // namespace
 
 float trmv_spatial_weight(float k, float sigma) {
   // G(k; 0, sigma) with its peak normalised to 1 [TRMV21 Sec. 5: the joint bilateral's spatial Gaussian].
@@ -70,7 +66,7 @@ T trmv_spatial_pixel(const Plane<T>& c, const SurfacePlanes& s, glm::ivec2 axis,
 template <class T>
 Plane<T> trmv_spatial_axis(const Plane<T>& c, const SurfacePlanes& s, glm::ivec2 axis, int radius,
                            const FloatPlane& sigma, float sigma_all, const SvgfParams& edges) {
-  check_sizes(c.width, c.height, s, "trmv spatial filter");
+  check_trmv_surface_sizes(c.width, c.height, s, "trmv spatial filter");
   const bool per_pixel = sigma.width != 0;
   if (per_pixel && (sigma.width != c.width || sigma.height != c.height))
     throw Error("trmv spatial filter: the std plane is not the frame's size");

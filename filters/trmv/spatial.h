@@ -54,6 +54,10 @@ template <class T>
 T trmv_spatial_pixel(const Plane<T>& c, const SurfacePlanes& s, glm::ivec2 axis, int radius, float sigma,
                      const SvgfParams& edges, int x, int y, Probe* probe = nullptr);
 
+// Throws rtdr::Error, naming `what`, unless the G-buffer planes are all w x h: the spatial filter's check, which
+// the clean-up and their ports make too (gpu/trmv_spatial_gpu.h).
+void check_trmv_surface_sizes(int w, int h, const SurfacePlanes& s, const char* what);
+
 // One 1-D pass over the whole frame with a per-pixel std (parallel over rows, deterministic). `sigma` is the
 // std at every pixel (the clean-up's std map, cleanup.h), or empty (width 0) for `sigma_all` everywhere.
 template <class T>

@@ -12,18 +12,6 @@
 namespace rtdr {
 namespace {
 
-void check_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion, const TrmvHistory& prev,
-                 const FloatPlane& alpha) {
-  const int w = filtered.width, h = filtered.height;
-  if (!has_size(mesh, w, h) || !has_size(motion.motion, w, h) || !empty_or_size(motion.valid, w, h) ||
-      !empty_or_size(alpha, w, h) || !empty_or_size(motion.reshaded, w, h) ||
-      motion.reshaded_valid.width != motion.reshaded.width || motion.reshaded_valid.height != motion.reshaded.height)
-    throw Error("trmv temporal pass: the mesh, motion, validity, alpha and re-shaded planes are not all " + std::to_string(w) +
-                "x" + std::to_string(h) + " like c~");
-  if (prev.color.width != 0 && !has_size(prev.mesh, prev.color.width, prev.color.height))
-    throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
-}
-
 // No history: alpha = 1 and cbar_i = c~_i; the fetched and clamped histories are 0 (temporal.h).
 TrmvTemporalPixel without_history(glm::vec3 c, Probe* probe) {
   TrmvTemporalPixel out;
@@ -36,6 +24,18 @@ TrmvTemporalPixel without_history(glm::vec3 c, Probe* probe) {
 }
 
 }  // namespace
+
+void check_trmv_temporal_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
+                               const TrmvHistory& prev, const FloatPlane& alpha) {
+  const int w = filtered.width, h = filtered.height;
+  if (!has_size(mesh, w, h) || !has_size(motion.motion, w, h) || !empty_or_size(motion.valid, w, h) ||
+      !empty_or_size(alpha, w, h) || !empty_or_size(motion.reshaded, w, h) ||
+      motion.reshaded_valid.width != motion.reshaded.width || motion.reshaded_valid.height != motion.reshaded.height)
+    throw Error("trmv temporal pass: the mesh, motion, validity, alpha and re-shaded planes are not all " +
+                std::to_string(w) + "x" + std::to_string(h) + " like c~");
+  if (prev.color.width != 0 && !has_size(prev.mesh, prev.color.width, prev.color.height))
+    throw Error("trmv temporal pass: the previous id.mesh is not the history's size");
+}
 
 bool trmv_fetch_history(const TrmvHistory& prev, glm::vec2 p_prev, glm::vec3& out, Probe* probe) {
   note_group(probe, "fetch");
@@ -134,7 +134,7 @@ TrmvTemporalPixel trmv_temporal_pixel(const RgbPlane& filtered, const UIntPlane&
 
 TrmvTemporalOutput trmv_temporal_pass(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
                                       const TrmvHistory& prev, const FloatPlane& alpha, const TrmvParams& params) {
-  check_sizes(filtered, mesh, motion, prev, alpha);
+  check_trmv_temporal_sizes(filtered, mesh, motion, prev, alpha);
   const int w = filtered.width, h = filtered.height;
   TrmvTemporalOutput out{RgbPlane(w, h), RgbPlane(w, h), RgbPlane(w, h), FloatPlane(w, h)};
   parallel_rows(h, [&](int y) {

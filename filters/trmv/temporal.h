@@ -85,6 +85,12 @@ TrmvTemporalPixel trmv_temporal_pixel(const RgbPlane& filtered, const UIntPlane&
                                       const TrmvHistory& prev, const FloatPlane& alpha, const TrmvParams& params,
                                       int x, int y, Probe* probe = nullptr);
 
+// Throws rtdr::Error unless the mesh, motion and (when given) validity, alpha and re-shaded planes have c~'s size
+// and the previous id.mesh the history's: the checks of trmv_temporal_pass, which its port makes too
+// (gpu/trmv_temporal_gpu.h).
+void check_trmv_temporal_sizes(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
+                               const TrmvHistory& prev, const FloatPlane& alpha);
+
 // trmv_temporal_pixel at every pixel (parallel over rows, deterministic). Throws rtdr::Error when the planes'
 // sizes disagree.
 TrmvTemporalOutput trmv_temporal_pass(const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,

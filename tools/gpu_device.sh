@@ -2,8 +2,13 @@
 # Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
 # no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
 # take .gl/ and .deps/ along. Usage, from the repository root:
-#   bash tools/gpu_device.sh [info] [test] [compare] [bench] [options]   (default: all five; none: build only)
+#   bash tools/gpu_device.sh [info] [targets] [test] [compare] [bench] [options]   (default: all six; none: build
+#   only)
 #     info     the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
+#     targets  the ports alone at 1920x1080, the rows of docs/performance.md's GPU targets: svgf (fp16 and fp32
+#              records) and asvgf on pillars, trmv on fence, each frame submitted 10 times and the last timed; the
+#              render side's ports (--stage gradients, --stage motion) on pillars and fence. Needs only `rtdr`, so
+#              it runs before the tests are built
 #     test     a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
 #     compare  rtdr compare on 10 frames of pillars at 320x180, every buffer of the ports against the golden
 #              passes, with the GPU's default fp16 illumination records and with fp32 records; then asvgf (pillars
@@ -28,7 +33,7 @@ mkdir -p "$OUT" "$LOGS"
 # Everything in $LOGS, as one archive in $OUT, replaced atomically.
 pack() { tar czf "$OUT/device.tgz.part" -C "$LOGS" . && mv "$OUT/device.tgz.part" "$OUT/device.tgz"; }
 steps=("$@")
-((${#steps[@]})) || steps=(info test compare bench options)
+((${#steps[@]})) || steps=(info targets test compare bench options)
 [ "${steps[*]}" = build ] && steps=()
 wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
 
@@ -77,13 +82,44 @@ EOF
 fi
 
 BUILD=build-gpu
+# `rtdr` first, so that the timings need not wait for the test programs; those are built only for `test`.
+build() {
+  cmake --build "$BUILD" -j "$(nproc)" "$@" >>"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
+}
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$DEPS/usr" \
-  -DRTDR_VULKAN_TESTS_ONLY=ON >"$LOGS/build.log" 2>&1 &&
-  cmake --build "$BUILD" -j "$(nproc)" >>"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
-echo "built: $BUILD"
+  -DRTDR_VULKAN_TESTS_ONLY=ON >"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
+build --target rtdr
+echo "built: $BUILD/app/rtdr"
 
 status=0
+clocks=
+# The SM clock while anything is timed (the card as found: its settings are never changed).
+if wants targets || wants bench || wants options; then
+  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
+    >"$LOGS/clocks.csv" 2>&1 &
+  clocks=$!
+fi
+
+if wants targets; then
+  # The whole filter on its ports: svgf as a GPU runs it (fp16 records), then with fp32 records; asvgf; trmv.
+  rtdr_bench() { "$BUILD/app/rtdr" bench --size 1920x1080 "$@" 2>&1 | tee -a "$LOGS/targets.txt" || status=1; }
+  rtdr_bench --backend vulkan --scenes pillars --runs 20 --warmup 5 --submits 10 --csv "$LOGS/targets_svgf.csv"
+  RTDR_VK_ILLUMINATION=fp32 rtdr_bench --backend vulkan --scenes pillars --runs 20 --warmup 5 --submits 10 \
+    --csv "$LOGS/targets_svgf_fp32.csv"
+  rtdr_bench --backend vulkan --method asvgf --scenes pillars --runs 20 --warmup 5 --submits 10 \
+    --csv "$LOGS/targets_asvgf.csv"
+  # TRMV's re-shading stays on the host (seconds a 1080p frame): fewer frames.
+  rtdr_bench --backend vulkan --method trmv --scenes fence --runs 5 --warmup 5 --submits 10 \
+    --csv "$LOGS/targets_trmv.csv"
+  for stage in motion gradients; do
+    rtdr_bench --stage $stage --backend vulkan --scenes pillars,fence --runs 5 --warmup 1 \
+      --csv "$LOGS/targets_$stage.csv"
+  done
+  pack
+fi
+
 if wants test; then
+  build
   ctest --test-dir "$BUILD" -L vulkan --output-on-failure -j 4 >"$LOGS/ctest.log" 2>&1 || status=1
   grep -E "tests passed|tests failed|Failed|\*\*\*" "$LOGS/ctest.log" | head -30
   pack
@@ -108,14 +144,6 @@ if wants compare; then
     grep -E "^($method|color|display)" "$LOGS/compare_$method.txt"
   done
   pack
-fi
-
-clocks=
-if wants bench || wants options; then
-  # The SM clock while the benchmarks run (the card as found: its settings are never changed).
-  nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
-    >"$LOGS/clocks.csv" 2>&1 &
-  clocks=$!
 fi
 
 if wants bench; then

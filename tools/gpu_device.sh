@@ -2,13 +2,16 @@
 # Validates and times the Vulkan ports on a machine with an NVIDIA GPU that has CMake, ninja and a compiler but
 # no package registry (the device machine of docs/performance.md). Run tools/gpu_deps.sh first, on Debian 12, and
 # take .gl/ and .deps/ along. Usage, from the repository root:
-#   bash tools/gpu_device.sh [info] [targets] [test] [compare] [bench] [options]   (default: all six; none: build
-#   only)
+#   bash tools/gpu_device.sh [info] [targets] [trmv] [test] [compare] [bench] [options]   (default: all seven;
+#   none: build only)
 #     info     the GPU, the Vulkan device, and a device-to-device copy's bandwidth (PyTorch, where there is one)
-#     targets  the ports alone at 1920x1080, the rows of docs/performance.md's GPU targets: svgf (fp16 and fp32
-#              records) and asvgf on pillars, trmv on fence, each frame submitted 10 times and the last timed; the
-#              render side's ports (--stage gradients, --stage motion) on pillars and fence. Needs only `rtdr`, so
-#              it runs before the tests are built
+#     targets  the ports alone at 1920x1080, docs/performance.md's "An NVIDIA H100, again": svgf (fp16 and fp32
+#              records) and asvgf on pillars, each frame submitted 100 times and the last timed (with 10 the GPU
+#              idles while the host packs the next frame, and never reaches its working clock). Needs only
+#              `rtdr`, so it runs before the test programs are built
+#     trmv     trmv on fence at 1920x1080 likewise (its cone re-shading takes seconds a frame on the host), then the
+#              render side's ports (--stage motion on fence, --stage gradients on pillars), one run each: their
+#              CPU columns trace the frame, with TRMV's 64-sample shading term
 #     test     a build with RTDR_VULKAN_TESTS_ONLY, then ctest -L vulkan (validation layer on)
 #     compare  rtdr compare on 10 frames of pillars at 320x180, every buffer of the ports against the golden
 #              passes, with the GPU's default fp16 illumination records and with fp32 records; then asvgf (pillars
@@ -16,7 +19,7 @@
 #     bench    rtdr bench --backend cpu,vulkan on pillars at 1280x720 and 1920x1080 (a GPU's defaults: storage
 #              inputs, fp16 illumination records), then the ports alone with fp32 records
 #              (RTDR_VK_ILLUMINATION=fp32) and with texel-buffer inputs (RTDR_VK_INPUTS=texel); each frame submitted
-#              10 times back to back and the last timed, so that the GPU runs at its working clock (--submits);
+#              100 times back to back and the last timed, so that the GPU runs at its working clock (--submits);
 #              then asvgf and trmv on their ports at 1920x1080 (docs/performance.md's A-SVGF and TRMV rows), and
 #              the render side's ports (--stage gradients, --stage motion) at 1920x1080
 #     options  the ports alone at 1920x1080 in the cheaper configurations whose accuracy docs/performance.md
@@ -33,7 +36,7 @@ mkdir -p "$OUT" "$LOGS"
 # Everything in $LOGS, as one archive in $OUT, replaced atomically.
 pack() { tar czf "$OUT/device.tgz.part" -C "$LOGS" . && mv "$OUT/device.tgz.part" "$OUT/device.tgz"; }
 steps=("$@")
-((${#steps[@]})) || steps=(info targets test compare bench options)
+((${#steps[@]})) || steps=(info targets trmv test compare bench options)
 [ "${steps[*]}" = build ] && steps=()
 wants() { [[ " ${steps[*]} " == *" $1 "* ]]; }
 
@@ -94,27 +97,30 @@ echo "built: $BUILD/app/rtdr"
 status=0
 clocks=
 # The SM clock while anything is timed (the card as found: its settings are never changed).
-if wants targets || wants bench || wants options; then
+if wants targets || wants trmv || wants bench || wants options; then
   nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,utilization.gpu --format=csv -lms 250 \
     >"$LOGS/clocks.csv" 2>&1 &
   clocks=$!
 fi
 
+rtdr_bench() { "$BUILD/app/rtdr" bench --size 1920x1080 "$@" 2>&1 | tee -a "$LOGS/targets.txt" || status=1; }
 if wants targets; then
-  # The whole filter on its ports: svgf as a GPU runs it (fp16 records), then with fp32 records; asvgf; trmv.
-  rtdr_bench() { "$BUILD/app/rtdr" bench --size 1920x1080 "$@" 2>&1 | tee -a "$LOGS/targets.txt" || status=1; }
-  rtdr_bench --backend vulkan --scenes pillars --runs 20 --warmup 5 --submits 10 --csv "$LOGS/targets_svgf.csv"
-  RTDR_VK_ILLUMINATION=fp32 rtdr_bench --backend vulkan --scenes pillars --runs 20 --warmup 5 --submits 10 \
+  # The whole filter on its ports: svgf as a GPU runs it (fp16 records), then with fp32 records; asvgf.
+  rtdr_bench --backend vulkan --scenes pillars --runs 5 --warmup 5 --submits 100 --csv "$LOGS/targets_svgf.csv"
+  RTDR_VK_ILLUMINATION=fp32 rtdr_bench --backend vulkan --scenes pillars --runs 5 --warmup 5 --submits 100 \
     --csv "$LOGS/targets_svgf_fp32.csv"
-  rtdr_bench --backend vulkan --method asvgf --scenes pillars --runs 20 --warmup 5 --submits 10 \
+  rtdr_bench --backend vulkan --method asvgf --scenes pillars --runs 5 --warmup 5 --submits 100 \
     --csv "$LOGS/targets_asvgf.csv"
-  # TRMV's re-shading stays on the host (seconds a 1080p frame): fewer frames.
-  rtdr_bench --backend vulkan --method trmv --scenes fence --runs 5 --warmup 5 --submits 10 \
+  pack
+fi
+
+if wants trmv; then
+  rtdr_bench --backend vulkan --method trmv --scenes fence --runs 3 --warmup 5 --submits 100 \
     --csv "$LOGS/targets_trmv.csv"
-  for stage in motion gradients; do
-    rtdr_bench --stage $stage --backend vulkan --scenes pillars,fence --runs 5 --warmup 1 \
-      --csv "$LOGS/targets_$stage.csv"
-  done
+  pack
+  rtdr_bench --stage motion --backend vulkan --scenes fence --runs 1 --warmup 0 --csv "$LOGS/targets_motion.csv"
+  rtdr_bench --stage gradients --backend vulkan --scenes pillars --runs 1 --warmup 0 \
+    --csv "$LOGS/targets_gradients.csv"
   pack
 fi
 
@@ -150,17 +156,17 @@ if wants bench; then
   for size in 1280x720 1920x1080; do
     # The ports as a GPU runs them against the golden passes, then the fp32 records, then the texel-buffer build.
     "$BUILD/app/rtdr" bench --backend cpu,vulkan --scenes pillars --size "$size" --runs 20 --warmup 5 \
-      --submits 10 --csv "$LOGS/bench_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
+      --submits 100 --csv "$LOGS/bench_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
     for variant in RTDR_VK_ILLUMINATION=fp32 RTDR_VK_INPUTS=texel; do
       echo "$variant:" | tee -a "$LOGS/bench.txt"
       env "$variant" "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size "$size" --runs 20 \
-        --warmup 5 --submits 10 --csv "$LOGS/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
+        --warmup 5 --submits 100 --csv "$LOGS/bench_${variant#*=}_$size.csv" 2>&1 | tee -a "$LOGS/bench.txt" || status=1
     done
   done
   # A-SVGF's whole frame and TRMV's filter on the ports (the golden passes would take minutes at 1080p).
   for method_scene in asvgf:pillars trmv:fence; do
     "$BUILD/app/rtdr" bench --backend vulkan --method "${method_scene%%:*}" --scenes "${method_scene#*:}" \
-      --size 1920x1080 --runs 20 --warmup 5 --submits 10 --csv "$LOGS/bench_${method_scene%%:*}.csv" 2>&1 |
+      --size 1920x1080 --runs 20 --warmup 5 --submits 100 --csv "$LOGS/bench_${method_scene%%:*}.csv" 2>&1 |
       tee -a "$LOGS/bench.txt" || status=1
   done
   for stage in gradients motion; do
@@ -174,7 +180,7 @@ if wants options; then
   # The configurations a 0.5 ms target could take (docs/performance.md), each timed like the bench step.
   for params in "--atrous-levels 4" "--atrous-levels 3" "--kernel-size 3" "--kernel-size 3 --atrous-levels 4"; do
     # shellcheck disable=SC2086  # $params is two or four words on purpose
-    "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size 1920x1080 --runs 20 --warmup 5 --submits 10 \
+    "$BUILD/app/rtdr" bench --backend vulkan --scenes pillars --size 1920x1080 --runs 20 --warmup 5 --submits 100 \
       $params --csv "$LOGS/options_${params//[ -]/}.csv" 2>&1 | tee -a "$LOGS/options.txt" || status=1
   done
   pack

@@ -11,12 +11,15 @@
 #include "scenes/catalog.h"
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "scenes/gltf_parts.h"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 
 namespace rtdr {
@@ -306,6 +309,22 @@ void append_default_material(Scene& scene) {
   scene.materials.push_back(default_material);
 }
 
+// Scene::content_hash: the file's bytes, then each buffer's bytes and each decoded image (size, components, bits,
+// pixels) as tinygltf loaded them, whether embedded or from files beside the scene.
+std::string content_hash(const std::string& path, const tinygltf::Model& model) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw Error(path + ": cannot read the scene file again to hash it");
+  Fnv1a64 h;
+  h.text(bytes);
+  for (const tinygltf::Buffer& buffer : model.buffers) h.text("buffer").bytes(buffer.data.data(), buffer.data.size());
+  for (const tinygltf::Image& image : model.images) {
+    const int32_t shape[4] = {image.width, image.height, image.component, image.bits};
+    h.text("image").bytes(shape, sizeof shape).bytes(image.image.data(), image.image.size());
+  }
+  return h.hex();
+}
+
 }  // namespace
 
 std::string resolve_scene_path(const std::string& name_or_path) {
@@ -321,6 +340,7 @@ Scene load_scene(const std::string& name_or_path) {
   const tinygltf::Model model = parse_file(scene.source);
   const Source src{model, scene.source};
   check_version(src);
+  scene.content_hash = content_hash(scene.source, model);
 
   gltf::load_materials(src, scene);
   std::vector<int> first_mesh_of_gltf_mesh;  // glTF mesh -> its primitive 0's Mesh

@@ -18,9 +18,10 @@ the kernel frees; the next rtdr eval on the cache removes it. A dependent job (a
 frame A-1) gets the cached frame A-1 linked into its staging folder first, where rtdr render --gradients reads it
 and checks its render key.
 
-A job that fails is tried again, up to --retries more times (with --job too); Dask also reruns, on another
-worker, the job of a worker that died (and gives up with KilledWorker after distributed.scheduler.allowed-failures deaths, which then
-counts as a failed try here). A job that fails on every try ends the run with that job's own one-line error.
+A job that fails is tried again, up to --retries more times (with --job too). Dask itself reruns, on another
+worker, the job of a worker that died, and gives up with KilledWorker after distributed.scheduler.allowed-failures
+deaths (3), which then counts as a failed try here. A job that fails on every try ends the run with that job's own
+one-line error.
 Progress, with an ETA from the jobs' cost estimates, goes to stderr; so does the summary: jobs, retries (tries
 after a job's first, the ones Dask made after a worker died included) and worker-seconds (of every try that ran to
 its end).
@@ -146,6 +147,29 @@ def log_try_start(run, job):
         pass
 
 
+def render(argv):
+    """Runs `argv` (rtdr render), by argument vector, as a child that dies with this process (PR_SET_PDEATHSIG):
+    a worker killed takes its rtdr with it. Returns "" when it succeeds, else its one line."""
+    prctl, parent = ctypes.CDLL(None, use_errno=True).prctl, os.getpid()
+
+    def die_with_worker():  # in the child, before exec
+        prctl(1, int(signal.SIGKILL))  # 1: PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # the worker died before the line above
+            os._exit(127)
+
+    try:
+        result = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                preexec_fn=die_with_worker)
+    except OSError as e:
+        return f"cannot run {argv[0]}: {e.strerror}"
+    why = last_line(result.stderr.decode("utf-8", "replace"))
+    if result.returncode < 0:
+        return f"rtdr render was killed by signal {-result.returncode}" + (f" ({why})" if why else "")
+    if result.returncode > 0:
+        return why or f"rtdr render exited with status {result.returncode}"
+    return ""
+
+
 def run_job(job, threads=0, run=""):
     """Runs one job where this is called (a Dask worker): rtdr render into a staging folder inside the cache, then
     each frame renamed to its entry. Returns the seconds it took; raises JobFailed with one line otherwise."""
@@ -154,43 +178,32 @@ def run_job(job, threads=0, run=""):
     argv = list(job["argv"])
     if threads:
         argv[1:1] = ["--threads", str(threads)]  # rtdr's global option: the frames are the same for any count
-    prctl, parent = ctypes.CDLL(None, use_errno=True).prctl, os.getpid()
-
-    def die_with_worker():  # in the child, before exec: a worker killed takes its rtdr with it
-        prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
-        if os.getppid() != parent:
-            os._exit(127)
-
+    first, last = job["frames"]
     try:
         staging = StagingFolder(job["cache"])
     except OSError as e:
         raise JobFailed(f"cannot stage in the cache '{job['cache']}': {e}", time.monotonic() - start)
     try:
-        first, last = job["frames"]
         if job.get("previous"):  # frame first-1, which the run continues (its key is checked by rtdr render)
             target = os.path.join(staging.path, frame_name(first - 1))
             try:
-                os.link(job["previous"], target)
-            except OSError:
-                shutil.copyfile(job["previous"], target)
-        try:
-            result = subprocess.run(argv + ["--out", staging.path], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                    stderr=subprocess.PIPE, preexec_fn=die_with_worker)
-        except OSError as e:
-            raise JobFailed(f"cannot run {argv[0]}: {e.strerror}", time.monotonic() - start)
-        if result.returncode != 0:
-            why = last_line(result.stderr.decode("utf-8", "replace"))
-            if result.returncode < 0:
-                why = f"rtdr render was killed by signal {-result.returncode}" + (f" ({why})" if why else "")
-            raise JobFailed(why or f"rtdr render exited with status {result.returncode}", time.monotonic() - start)
-        moves = [(os.path.join(staging.path, frame_name(f)), entry) for f, entry in zip(range(first, last + 1),
-                                                                                         job["entries"])]
-        for staged, _ in moves:
-            if not os.path.isfile(staged):
-                raise JobFailed(f"rtdr render wrote no {os.path.basename(staged)}", time.monotonic() - start)
-        for staged, entry in moves:  # each rename is atomic: an entry is whole or absent
+                try:
+                    os.link(job["previous"], target)
+                except OSError:
+                    shutil.copyfile(job["previous"], target)
+            except OSError as e:
+                raise JobFailed(f"cannot read the frame it continues, '{job['previous']}': {e.strerror}",
+                                time.monotonic() - start)
+        why = render(argv + ["--out", staging.path])
+        if why:
+            raise JobFailed(why, time.monotonic() - start)
+        staged = [os.path.join(staging.path, frame_name(f)) for f in range(first, last + 1)]
+        for path in staged:
+            if not os.path.isfile(path):
+                raise JobFailed(f"rtdr render wrote no {os.path.basename(path)}", time.monotonic() - start)
+        for path, entry in zip(staged, job["entries"]):  # each rename is atomic: an entry is whole or absent
             os.makedirs(os.path.dirname(entry), exist_ok=True)
-            os.replace(staged, entry)
+            os.replace(path, entry)
     except OSError as e:
         raise JobFailed(f"cannot move a frame into the cache: {e}", time.monotonic() - start)
     finally:

@@ -9,9 +9,11 @@
 #include "core/progress.h"
 #include "core/subprocess.h"
 #include "eval/experiment.h"
+#include "eval/render_plan.h"
 #include "filters/method.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
@@ -28,6 +30,7 @@ struct EvalOptions {
   uint32_t seed = 0;
   std::string cache = "out/cache";
   std::string out = "out/eval";
+  std::string plan;  // --plan FILE: write the renders the run needs, run nothing
   bool gradients = false;
   GradientParams gradient;
 };
@@ -58,6 +61,27 @@ void write_strip(const std::string& path, const std::vector<std::pair<std::strin
   write_display_png(path, strip);
 }
 
+// --plan: the renders this run needs and its cache lacks, one JSON line per job (eval/render_plan.h), written whole;
+// nothing is rendered and --out is not touched. argv[0] of each job is this rtdr, by its absolute path.
+void write_plan(const EvalConfig& config, const std::string& file) {
+  const std::vector<RenderJob> jobs = plan_renders(config, std::filesystem::read_symlink("/proc/self/exe").string());
+  std::string text;
+  int frames = 0;
+  double cost = 0.0;
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    text += plan_line(jobs[k], int(k)) + "\n";
+    frames += jobs[k].last - jobs[k].first + 1;
+    cost += double(jobs[k].cost());
+  }
+  write_text_file(file, text);
+  if (jobs.empty())
+    std::printf("wrote no job to %s: the cache holds every frame this run needs\n", file.c_str());
+  else
+    std::printf("wrote %zu job(s) to %s: %d frame(s) the cache lacks, %.4g pixel samples; run them with "
+                "tools/farm.py, then this command without --plan (docs/scaling.md)\n", jobs.size(), file.c_str(),
+                frames, cost);
+}
+
 void run_eval_command(const EvalOptions& o) {
   const Size size = parse_size(o.size);
   const FrameRange frames = parse_frames(o.frames);
@@ -74,6 +98,7 @@ void run_eval_command(const EvalOptions& o) {
   config.gradients = o.gradients;
   config.gradient = o.gradient;
   validate(o.gradient);
+  if (!o.plan.empty()) return write_plan(config, o.plan);
   SpecMethods methods;  // outlives every method run_eval makes
   config.make_method = [&methods](const MethodSpec& spec) { return methods.make(spec); };
   StagedOutputDir out(o.out);  // every output appears at the end, or none does
@@ -126,6 +151,10 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--seed", o->seed, "seed of the 1-spp inputs (references use another)")->capture_default_str();
   sub->add_option("--cache", o->cache, "where rendered frames are cached (\"\" for none)")->capture_default_str();
   sub->add_option("--out", o->out, "output directory")->capture_default_str();
+  sub->add_option("--plan", o->plan,
+                  "render nothing: write to FILE the renders this run needs and --cache lacks, one JSON line per "
+                  "rtdr render job, for tools/farm.py or a batch scheduler (docs/scaling.md)")
+      ->type_name("FILE");
   sub->add_flag("--gradients", o->gradients,
                 "every method's input has A-SVGF's gradient samples (rtdr render --gradients), rendered from frame 0");
   add_gradient_flags(sub, o->gradient);

@@ -179,7 +179,7 @@ RenderSettings reference_settings(const EvalConfig& c) {
   return settings;
 }
 
-EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+void check_eval_config(const EvalConfig& c) {
   if (c.first_frame < 0 || c.last_frame < c.first_frame || c.last_frame > kMaxFrameIndex)
     throw Error("frames " + std::to_string(c.first_frame) + "-" + std::to_string(c.last_frame) +
                 ": need 0 <= first <= last <= " + std::to_string(kMaxFrameIndex));
@@ -189,10 +189,41 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
     throw Error("size " + std::to_string(c.width) + "x" + std::to_string(c.height) + ": evaluation needs at least " +
                 std::to_string(window) + "x" + std::to_string(window) + " (the SSIM window)");
   if (c.gradients) validate(c.gradient);
+}
+
+EvalRenders eval_renders(const EvalConfig& c, const std::vector<const Method*>& methods) {
+  EvalRenders r;
+  r.input = input_settings(c);
+  r.reference = reference_settings(c);
+  // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
+  // every method without rows of its own gets the same input. With TRMV's shading term when a method reads it
+  // (trmv): then every method's input carries it.
+  bool gradients = c.gradients;
+  for (size_t m = 0; m < methods.size(); ++m) {
+    gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
+    if (methods[m]->reads_shading_term()) r.input.trace.shading_samples = kTrmvShadingSamples;
+  }
+  if (!gradients) return r;
+  r.gradient_inputs.push_back(c.gradient);
+  for (const MethodSpec& spec : c.methods) {
+    const GradientParams own = spec_gradient(spec, c.gradient);
+    const auto same = [&](const GradientParams& g) { return param_values(g) == param_values(own); };
+    if (std::none_of(r.gradient_inputs.begin(), r.gradient_inputs.end(), same)) r.gradient_inputs.push_back(own);
+  }
+  return r;
+}
+
+EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+  check_eval_config(c);
   const Scene scene = load_scene(c.scene);
   FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
-  for (const MethodSpec& spec : c.methods) methods.push_back(make_spec_method(c, spec));
+  std::vector<const Method*> made;
+  for (const MethodSpec& spec : c.methods) {
+    methods.push_back(make_spec_method(c, spec));
+    made.push_back(methods.back().get());
+  }
+  const EvalRenders renders = eval_renders(c, made);
   const int frames = c.last_frame - c.first_frame + 1;
   const int total = 2 * frames + int(c.methods.size()) * frames;
   int done = 0;
@@ -206,20 +237,14 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<FloatPlane> ref_direct, ref_depth;  // for the umbrae
   std::vector<RgbPlane> ref_position;
   const TonemapParams tonemap_params;
-  // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
-  // every method without rows of its own gets the same input.
-  bool gradients = c.gradients;
-  for (size_t m = 0; m < methods.size(); ++m)
-    gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
-  // With TRMV's shading term when a method reads it (trmv): then every method's input carries it.
-  RenderSettings input = input_settings(c);
-  for (const std::unique_ptr<Method>& m : methods)
-    if (m->reads_shading_term()) input.trace.shading_samples = kTrmvShadingSamples;
-  if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, c.gradient);
+  const bool gradients = !renders.gradient_inputs.empty();
+  if (gradients)
+    inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, renders.input,
+                                   renders.gradient_inputs.front());
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
-    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input));
+    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, renders.input));
     tick();
-    const Frame ref = cache.get(f, c.width, c.height, reference_settings(c));
+    const Frame ref = cache.get(f, c.width, c.height, renders.reference);
     ref_colour.push_back(frame_colour(ref));
     ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));
     ref_direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
@@ -230,12 +255,9 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_position, ref_depth);
   // The inputs of specs with gradient rows of their own, one sequence per set of gradient parameters.
   std::map<std::vector<double>, std::vector<Frame>> own_inputs;
-  for (const MethodSpec& spec : c.methods) {
-    const GradientParams own = spec_gradient(spec, c.gradient);
-    if (!spec.gradient_rows.empty() && param_values(own) != param_values(c.gradient) && !own_inputs.count(param_values(own)))
-      own_inputs[param_values(own)] =
-          cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, own);
-  }
+  for (size_t g = 1; g < renders.gradient_inputs.size(); ++g)
+    own_inputs[param_values(renders.gradient_inputs[g])] = cache.gradient_frames(
+        c.first_frame, c.last_frame, c.width, c.height, renders.input, renders.gradient_inputs[g]);
 
   EvalResult result;
   result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.back()), tonemap_params)});

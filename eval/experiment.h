@@ -115,6 +115,25 @@ RgbPlane frame_colour(const Frame& frame);
 RenderSettings input_settings(const EvalConfig& config);
 RenderSettings reference_settings(const EvalConfig& config);
 
+// What run_eval renders, or takes from the cache: frames first_frame..last_frame of each of these sequences, at the
+// config's size. The plan of a run's renders (eval/render_plan.h) lists them from here too.
+struct EvalRenders {
+  // The 1-spp inputs: input_settings(config), with TRMV's shading term (kTrmvShadingSamples) when a method reads
+  // it (trmv).
+  RenderSettings input;
+  // Empty when the inputs carry no gradient samples. Otherwise each sequence of inputs with them: the run's
+  // parameters first (every method's input but those of specs with gradient rows of their own), then each other
+  // set the specs' gradient_<row> keys make, in the order of the specs.
+  std::vector<GradientParams> gradient_inputs;
+  RenderSettings reference;  // reference_settings(config)
+};
+// `methods`: the config's methods, made, in the order of config.methods; only what they read is asked.
+EvalRenders eval_renders(const EvalConfig& config, const std::vector<const Method*>& methods);
+
+// Throws rtdr::Error for a config run_eval refuses before it renders: frames outside 0..kMaxFrameIndex or out of
+// order, a size below the SSIM window, gradient parameters out of range.
+void check_eval_config(const EvalConfig& config);
+
 // Every method is made before the first frame is rendered, so a spec that cannot run (no Vulkan device, say) fails
 // at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});

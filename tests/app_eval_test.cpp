@@ -1,6 +1,7 @@
 // `rtdr eval` (app/cmd_eval.cpp, app/backend.cpp's SpecMethods) as a user meets it, running the real binary
 // (RTDR_EXE): bad method specs give one line on stderr, a non-zero exit and nothing rendered or written; with
-// backend=vulkan in a spec, the shader ports run beside the golden passes and are measured by the same metrics.
+// backend=vulkan in a spec, the shader ports run beside the golden passes and are measured by the same metrics;
+// --plan writes the jobs of the run's renders (eval/render_plan.h) and nothing else.
 //
 // Bound on the ports' RMSE (the Vulkan test below). The pipeline's colour c' is within d of the golden colour c
 // per channel, relative to max(|c|, f) with f = 1e-2: d = 2e-3 with fp32 illumination records and 2e-2 with fp16
@@ -18,6 +19,7 @@
 #include "test_skip.h"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -80,6 +82,46 @@ TEST_CASE("rtdr eval: a bad method spec gives one line before anything is render
     CHECK(files_in(dir / "cache").empty());
     CHECK(files_in(dir / "out").empty());
   }
+}
+
+TEST_CASE("rtdr eval --plan writes one rtdr render job per line, with this rtdr's path, and renders nothing") {
+  const fs::path dir = scratch("plan");
+  const fs::path cache = dir / "cache", out = dir / "out", plan = dir / "plan.jsonl";
+  // A port's spec is planned from its golden method's inputs: no device is opened.
+  const RunResult r = run_rtdr("eval --scene pillars --methods svgf,asvgf:backend=vulkan --frames 0-1 --size 24x16 "
+                               "--ref-spp 2 --cache " + cache.string() + " --out " + out.string() + " --plan " +
+                                   plan.string(), dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("wrote 3 job(s) to " + plan.string()));
+  std::istringstream lines(read_text(plan));
+  std::vector<nlohmann::json> jobs;
+  for (std::string line; std::getline(lines, line);) jobs.push_back(nlohmann::json::parse(line));
+  REQUIRE(jobs.size() == 3);  // the references of frames 0 and 1, and the run of gradient frames 0-1
+  for (const nlohmann::json& job : jobs) {
+    CHECK(job.at("argv").at(0) == fs::canonical(RTDR_EXE).string());
+    CHECK(job.at("argv").at(1) == "render");
+  }
+  CHECK(jobs[2].at("dependent") == true);
+  CHECK(jobs[2].at("frames") == nlohmann::json::array({0, 1}));
+  CHECK_FALSE(fs::exists(cache));  // nothing rendered
+  CHECK(files_in(dir) == std::set<std::string>{"plan.jsonl", "stderr.txt", "stdout.txt"});  // no temporary left
+}
+
+TEST_CASE("rtdr eval --plan is refused without a cache, and into a folder that does not exist, leaving no file") {
+  const fs::path dir = scratch("plan_refused");
+  const std::vector<std::string> run = {"eval", "--scene", "pillars", "--methods", "svgf", "--frames", "0-1",
+                                        "--size", "24x16", "--ref-spp", "2", "--out", (dir / "out").string()};
+  std::vector<std::string> no_cache = run, no_folder = run;
+  no_cache.insert(no_cache.end(), {"--cache", "", "--plan", (dir / "plan.jsonl").string()});
+  no_folder.insert(no_folder.end(),
+                   {"--cache", (dir / "cache").string(), "--plan", (dir / "no" / "plan.jsonl").string()});
+  for (const auto& args : {no_cache, no_folder}) {
+    const RunResult r = run_rtdr_args(args, dir);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::StartsWith("rtdr: error: "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK(files_in(dir) == std::set<std::string>{"stderr.txt", "stdout.txt"});
 }
 
 TEST_CASE("rtdr eval runs svgf on the shader ports beside the golden passes, within the pipeline's bound") {

@@ -13,6 +13,8 @@ PACKAGES=(
   libvulkan-dev glslc spirv-tools mesa-vulkan-drivers vulkan-validationlayers
   # Charts and notebooks run on Debian's Python (/usr/bin/python3), not whatever python3 is on PATH.
   python3-numpy python3-matplotlib python3-openimageio python3-skimage jupyter-nbconvert python3-ipykernel
+  # tools/farm.py: the render jobs of `rtdr eval --plan` on a Dask cluster (docs/scaling.md).
+  python3-distributed
 )
 
 bash tools/install_missing.sh setup "${PACKAGES[@]}"

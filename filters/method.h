@@ -60,11 +60,18 @@ class Method {
   virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
   // Forgets all history (the next frame is treated as the first).
   virtual void reset() = 0;
+  // A copy of the method as it stands: its history and what each pass saw last frame, so that the copy probes
+  // (and filters on) exactly as this one would. `rtdr view` keeps one per frame. A method that cannot be copied
+  // (a Vulkan back end's, whose state lives on the device) throws rtdr::Error.
+  virtual std::unique_ptr<Method> clone() const;
   // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
   // probe attached. `stream` is "direct" or "indirect" for per-stream passes, `level` the a-trous level.
   virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
   // The passes probe() accepts: those the method runs, in order (filters/passes.h declares each).
   virtual std::vector<std::string> probe_passes() const = 0;
+  // The streams probe() takes as `stream`: SVGF's illumination streams, "direct" and "indirect", unless the
+  // method filters other components (trmv).
+  virtual std::vector<std::string> probe_streams() const { return {"direct", "indirect"}; }
   // Every channel filter() reads from its input frame.
   virtual InputChannels inputs() const = 0;
   // Every channel filter() adds to `dump`: the dump layers of the passes it runs (filters/passes.h).

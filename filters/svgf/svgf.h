@@ -62,6 +62,7 @@ class SvgfFilter : public Method {
   std::string name() const override { return options_.name; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
+  std::unique_ptr<Method> clone() const override { return std::make_unique<SvgfFilter>(*this); }
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }

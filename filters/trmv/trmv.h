@@ -55,10 +55,12 @@ class TrmvFilter : public Method {
   std::string name() const override { return "trmv"; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
+  std::unique_ptr<Method> clone() const override { return std::make_unique<TrmvFilter>(*this); }
   // `stream` is the component: "visibility" (or "direct", whose noisy part it is), "diffuse" or "glossy"; `level`
   // is unused.
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
+  std::vector<std::string> probe_streams() const override { return {"visibility", "diffuse", "glossy"}; }
   InputChannels inputs() const override { return trmv_input_channels(); }
   std::vector<std::string> dump_channels() const override;
 

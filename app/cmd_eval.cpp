@@ -152,8 +152,8 @@ void run_eval_command(const EvalOptions& o) {
   const std::string tile_folder = out.file(".strip-tiles");  // inside the staging folder, removed before the commit
   const auto tiles = write_strip_tiles(o, result.last_frame, tile_folder);
   // The chart script gets its arguments as a vector, never through a shell: a path or scene name holding a
-  // quote is just a name; "--flag=value" keeps a value that starts with '-' a value, and "--" ends the options,
-  // so a path that starts with '-' is not taken for one. Installed, the script is <prefix>/share/rtdr/eval/.
+  // quote is just a name; a value joined to its option by '=' stays a value even if it starts with '-', and "--"
+  // ends the options, so a path that starts with '-' is not taken for one. Installed, the script is <prefix>/share/rtdr/eval/.
   std::vector<std::string> charts = {"/usr/bin/python3", data_path("eval/charts.py", RTDR_SOURCE_DIR "/eval/charts.py"),
                                      "--title=" + o.scene, "--metrics=" + o.chart_metrics,
                                      "--crop=" + o.strip_crop, "--lines="};

@@ -1,8 +1,8 @@
 """strip.png of eval/charts.py: the last frame of every method, as a labelled grid of crops.
 
 `rtdr eval` writes each method's last display frame as a PNG (in a temporary folder) and hands charts.py the
-tiles in order, each with its label: the 1-spp input, every method that ran (up to its --strip-max, or those of
---strip), the reference. The grid is about as wide as tall, so it stays readable when shrunk to a screen, and
+tiles in order, each with its label: the 1-spp input, every method that ran (up to the number it is given, or
+those it is asked for), the reference. The grid is about as wide as tall, so it stays readable when shrunk to a screen, and
 every tile shows the same crop, magnified with visible pixels:
   auto      the half-width, half-height window where the methods differ most from each other: the largest sum
             of the per-pixel standard deviation, across the methods and the reference, of display luminance

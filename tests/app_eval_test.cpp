@@ -172,7 +172,7 @@ TEST_CASE("rtdr eval --help lists the method names, and no help text says a port
   CHECK_THAT(compare.out, !Catch::Contains("run SVGF") && Catch::Contains("svgf, asvgf or trmv"));
 }
 
-// Issue 32's class 16: a file name is the user's text, never TeX. The scene `$\sqrt$.gltf` (pillars, copied) names
+// A file name is the user's text, never TeX. The scene `$\sqrt$.gltf` (pillars, copied) names
 // the charts' titles; matplotlib would read "$\sqrt$" as mathtext and fail after all the rendering.
 TEST_CASE("rtdr eval: a scene file named with TeX in it gives its charts, its name shown as written") {
   const fs::path dir = scratch("tex_name");

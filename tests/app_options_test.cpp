@@ -31,7 +31,7 @@ bool same_frame(const rtdr::Frame& a, const rtdr::Frame& b) {
 
 }  // namespace
 
-TEST_CASE("--threads is accepted after the subcommand as before it, with the same frames") {
+TEST_CASE("rtdr accepts --threads after the subcommand as before it, with the same frames") {
   const fs::path dir = scratch("threads");
   const std::string before = (dir / "before").string(), after = (dir / "after").string();
   REQUIRE(run_rtdr("--threads 1 render --scene pillars --frames 0 --size 24x14 --out " + before, dir).exit_code == 0);
@@ -48,7 +48,7 @@ TEST_CASE("--threads is accepted after the subcommand as before it, with the sam
     CHECK_THAT(run_rtdr(sub + " --help", dir).out, Catch::Contains("--threads N"));
 }
 
-TEST_CASE("--trmv-motion takes the motion's names and its numbers, as eval's trmv:motion= does") {
+TEST_CASE("rtdr filter --trmv-motion takes the motion's names and its numbers, as eval's trmv:motion= does") {
   const fs::path dir = scratch("motion");
   const std::string in = (dir / "in").string();
   REQUIRE(run_rtdr("render --scene fence --frames 0-1 --size 24x14 --shading-samples 2 --out " + in, dir).exit_code ==

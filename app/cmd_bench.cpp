@@ -17,6 +17,7 @@
 #include "scenes/catalog.h"
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -39,6 +40,37 @@ std::vector<std::string> bench_scene_list(const std::string& text) {
   for (std::string name; std::getline(ss, name, ',');)
     if (!name.empty()) names.push_back(name);
   return names;
+}
+
+BenchTable::BenchTable(const std::string& first, const std::vector<std::string>& cells,
+                       std::vector<std::pair<std::string, int>> columns)
+    : first_(first), first_width_(int(first.size())), columns_(std::move(columns)) {
+  for (const std::string& c : cells) first_width_ = std::max(first_width_, int(c.size()));
+  for (auto& [name, width] : columns_) width = std::max(width, int(name.size()));
+}
+
+void BenchTable::header(const std::string& note) const {
+  std::printf("%-*s", first_width_, first_.c_str());
+  for (const auto& [name, width] : columns_) std::printf(" %*s", width, name.c_str());
+  std::printf("%s%s\n", note.empty() ? "" : "   ", note.c_str());
+  std::fflush(stdout);
+}
+
+void BenchTable::row(const std::string& first, const std::vector<std::string>& cells) const {
+  std::printf("%-*s", first_width_, first.c_str());
+  for (size_t c = 0; c < cells.size() && c < columns_.size(); ++c)
+    std::printf(" %*s", columns_[c].second, cells[c].c_str());
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+std::string cell(const char* format, ...) {
+  char text[64];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  return text;
 }
 
 BenchFrame bench_frame(const Scene& scene, Size size) {

@@ -11,6 +11,7 @@
 #include "filters/image.h"
 #include "filters/method.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -74,6 +75,14 @@ struct ProbeOptions {
 void run_probe(const ProbeOptions& o) {
   const auto [x, y] = parse_pixel(o.pixel, "--pixel");
   const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  // A pass the method does not run is refused before any frame is read, with the passes it runs.
+  const std::vector<std::string> passes = method->probe_passes();
+  if (std::find(passes.begin(), passes.end(), o.pass) == passes.end()) {
+    std::string known;
+    for (const std::string& p : passes) known += (known.empty() ? "" : ", ") + p;
+    throw Error("--pass '" + o.pass + "' is not a pass of method " + o.method + " with these parameters; its passes: " +
+                known + " (rtdr probe --help says what each prints)");
+  }
   // The history of frame F is built by every frame before it: run the method from the first frame on.
   const std::vector<SequenceFrame> all = list_sequence(o.in, "");
   SequenceShape shape;

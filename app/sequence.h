@@ -44,6 +44,11 @@ Frame read_method_input(const std::string& path, const InputChannels& channels);
 // Throws a one-line rtdr::Error naming the file(s).
 Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels);
 
+// Each layer of `channels` that `frame` lacks in part or whole, one line each, naming the channels it lacks and, for
+// a layer `rtdr render` writes only when asked, the flag that writes it (filters/method.h missing_layer_fix).
+// Channels with a default are not missing. read_filter_input throws the first; input_problems lists them all.
+std::vector<std::string> missing_layers(const Frame& frame, const InputChannels& channels);
+
 // Everything wrong with one frame as the input of a method that reads `channels`, one line each, for rtdr check:
 // each layer that lacks channels, with the channels it lacks (a channel with a default may be absent); each channel of the wrong type; each channel that
 // holds NaN or infinity, with how many pixels and the first; a size other than `first`'s (when given); and, for

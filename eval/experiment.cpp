@@ -46,7 +46,8 @@ std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& 
 // One method over the whole sequence: a row of metrics per frame.
 void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<Frame>& inputs,
                      const std::vector<RgbPlane>& ref_colour, const std::vector<RgbPlane>& ref_display,
-                     const std::vector<Region>& umbrae, const EvalConfig& c, EvalResult& result,
+                     const std::vector<double>& ref_temporal, const std::vector<Region>& umbrae, const EvalConfig& c,
+                     EvalResult& result,
                      const std::function<void()>& tick) {
   RgbPlane previous_display;
   for (size_t k = 0; k < inputs.size(); ++k) {
@@ -64,12 +65,13 @@ void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<F
     row.umbra_rmse = rmse(colour, ref_colour[k], umbrae[k]);
     row.gradient_share = gradient_sample_share(inputs[k]);
     row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
+    row.ref_temporal_error = ref_temporal[k];
     row.ms = method.pass_times();
     row.ms_total = total_ms(row.ms);  // without the host's transfer, as rtdr bench
     result.rows.push_back(row);
     previous_display = display;
     if (c.observe) c.observe(spec, row.frame, out, ref_colour[k]);
-    if (k + 1 == inputs.size() && spec.params.empty()) result.last_frame.push_back({spec.text, display});
+    if (k + 1 == inputs.size()) result.last_frame.push_back({spec.text, display});
     tick();
   }
 }
@@ -253,6 +255,10 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
     tick();
   }
   const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_position, ref_depth);
+  // The reference's own change between frames [SVGF17 Sec. 5.4]: the scene's real motion, what a method's temporal
+  // error is read against.
+  std::vector<double> ref_temporal(1, std::numeric_limits<double>::quiet_NaN());
+  for (size_t k = 1; k < ref_display.size(); ++k) ref_temporal.push_back(temporal_error(ref_display[k], ref_display[k - 1]));
   // The inputs of specs with gradient rows of their own, one sequence per set of gradient parameters.
   std::map<std::vector<double>, std::vector<Frame>> own_inputs;
   for (size_t g = 1; g < renders.gradient_inputs.size(); ++g)
@@ -264,7 +270,8 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   for (size_t m = 0; m < methods.size(); ++m) {
     const auto own = own_inputs.find(param_values(spec_gradient(c.methods[m], c.gradient)));
     const std::vector<Frame>& method_inputs = own == own_inputs.end() ? inputs : own->second;
-    evaluate_method(c.methods[m], *methods[m], method_inputs, ref_colour, ref_display, umbrae, c, result, tick);
+    evaluate_method(c.methods[m], *methods[m], method_inputs, ref_colour, ref_display, ref_temporal, umbrae, c, result,
+                    tick);
     methods[m].reset();  // its history's memory
   }
   result.last_frame.push_back({"reference " + std::to_string(c.ref_spp) + " spp", ref_display.back()});
@@ -277,12 +284,13 @@ void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& r
     for (const auto& [pass, ms] : r.ms) passes.insert(pass);
   std::ostringstream csv;
   csv.precision(9);
-  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,brightness_error,umbra_rmse,gradient_share,ms_total";
+  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,ref_temporal_error,brightness_error,umbra_rmse,"
+         "gradient_share,ms_total";
   for (const std::string& p : passes) csv << ",ms_" << p;
   csv << '\n';
   for (const MetricsRow& r : rows) {
     csv << r.method << ',' << r.params << ',' << r.frame << ',' << r.rmse << ',' << r.relmse << ',' << r.ssim << ','
-        << r.flip << ',' << r.temporal_error << ',' << r.brightness_error << ',' << r.umbra_rmse << ','
+        << r.flip << ',' << r.temporal_error << ',' << r.ref_temporal_error << ',' << r.brightness_error << ',' << r.umbra_rmse << ','
         << r.gradient_share << ',' << r.ms_total;
     for (const std::string& p : passes) {
       csv << ',';

@@ -6,6 +6,8 @@
 //   ssim, flip        on tone-mapped display values in [0, 1] (the method's `display`, TAA included,
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
+//   ref_temporal_error  the same between consecutive reference frames: the scene's own change, the same in every
+//                    method's row (temporal_error.png draws it beside the methods)
 //   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
 //   umbra_rmse       rmse over the moving umbrae only, Fig. 5's umbra (eval/metrics.h umbra_regions; NaN
 //                    where a frame has none, as under a moving camera)
@@ -89,6 +91,7 @@ struct MetricsRow {
   int frame = 0;
   double rmse = 0, relmse = 0, ssim = 0, flip = 0;
   double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
+  double ref_temporal_error = 0;  // the reference's, between this frame and the one before; NaN on the first
   double brightness_error = 0;  // relative error of the mean luminance, linear HDR (eval/metrics.h)
   double umbra_rmse = 0;        // rmse over the frame's moving umbrae; NaN where it has none
   double gradient_share = 0;    // the share of the input's pixels that are gradient samples
@@ -101,8 +104,8 @@ using EvalProgress = std::function<void(int, int)>;
 
 struct EvalResult {
   std::vector<MetricsRow> rows;
-  // The last frame side by side, for a strip image: the 1-spp input, each method's display (default
-  // parameters only, not the sweeps), the reference.
+  // The last frame side by side, for a strip image: the 1-spp input, each method's display (every spec, in the
+  // order run), the reference.
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
@@ -138,8 +141,8 @@ void check_eval_config(const EvalConfig& config);
 // at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
-// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, umbra_rmse, gradient_share,
-// ms_total, then one ms_<pass> column per pass
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, ref_temporal_error, brightness_error, umbra_rmse,
+// gradient_share, ms_total, then one ms_<pass> column per pass
 // of any method (empty where a method has no such pass). Written atomically.
 void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
 

@@ -82,6 +82,14 @@ InputChannels common_input_channels(const std::vector<std::string>& illumination
   return c;
 }
 
+std::string missing_layer_fix(const std::string& layer) {
+  if (layer == "gradient")  // trace/gradients.h
+    return "render the frames with `rtdr render --gradients` (A-SVGF's gradient samples)";
+  if (layer == "direct.shading")  // trace/shading.h; kTrmvShadingSamples is what rtdr eval renders
+    return "render the frames with `rtdr render --shading-samples N` (TRMV's shading term; rtdr eval uses 64)";
+  return "";
+}
+
 void fill_input_defaults(Frame& frame, const InputChannels& channels) {
   for (const auto& [name, value] : channels.defaults)
     if (!frame.has(name)) frame.add_float(name, value);
@@ -122,7 +130,7 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     options.taa_params = params.taa;
     return options;
   }
-  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines and has no Vulkan port yet");
+  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines (its filter: filters/trmv/trmv.h)");
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);

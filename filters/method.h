@@ -47,6 +47,11 @@ struct InputChannels {
 // method's own noisy channels), and id.mesh; emission and indirect light default to 0 (an engine with no emitters
 // in view has no emission; one that does not split its illumination puts it all in `direct`).
 InputChannels common_input_channels(const std::vector<std::string>& illumination);
+// How to make frames hold `layer` where `rtdr render` writes it only when asked: "gradient" (A-SVGF's gradient
+// samples: render them with `rtdr render --gradients`) and "direct.shading" (TRMV's shading term: `rtdr render
+// --shading-samples N`); "" for any other layer. Every error about a frame that lacks such a layer ends with it
+// (rtdr filter, probe, compare and check, through app/sequence.h).
+std::string missing_layer_fix(const std::string& layer);
 // Adds every channel of channels.defaults that `frame` lacks, filled with its default. Callers that hand a
 // user's frame to Method::filter call it first (rtdr filter, probe and compare do, through app/sequence.h).
 void fill_input_defaults(Frame& frame, const InputChannels& channels);
@@ -107,8 +112,8 @@ MethodParams method_defaults(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
-// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines and
-// has no Vulkan port yet.
+// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines (its
+// port is gpu/trmv_vulkan.h).
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
 std::vector<std::string> method_names();

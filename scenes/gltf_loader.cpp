@@ -44,7 +44,8 @@ std::string one_line(std::string text) {
 tinygltf::Model parse_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(path + ": no such scene file (a bare name like 'cornell' means " RTDR_SCENE_DIR "/cornell.gltf)");
+    throw Error(path + ": no such scene file (a bare name like 'cornell' means " + shipped_scene_dir() +
+                "/cornell.gltf)");
   tinygltf::TinyGLTF reader;
   tinygltf::Model model;
   std::string err, warn;  // warnings (unknown extensions and the like) are not errors for us

@@ -11,6 +11,7 @@
 #include "scenes/catalog.h"
 
 #include "core/error.h"
+#include "core/regular_file.h"
 #include "scenes/gltf_parts.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -39,10 +40,13 @@ std::string one_line(std::string text) {
 }
 
 tinygltf::Model parse_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
+  const std::string kind = describe_path_kind(path);
+  if (kind == "missing")
     throw Error(path + ": no such scene file (a bare name like 'cornell' means " RTDR_SCENE_DIR "/cornell.gltf)");
+  if (kind != "a regular file") throw Error(path + ": the scene file is " + kind + ", not a regular file");
+  gltf::SceneFiles files(path);  // what tinygltf may read and decode (gltf_files.cpp)
   tinygltf::TinyGLTF reader;
+  files.attach(reader);
   tinygltf::Model model;
   std::string err, warn;  // warnings (unknown extensions and the like) are not errors for us
   bool ok = false;
@@ -52,6 +56,8 @@ tinygltf::Model parse_file(const std::string& path) {
   } catch (const std::exception& e) {  // tinygltf's JSON parser and containers may throw
     err = e.what();
   }
+  // A refused file is an error even where tinygltf would go on without it (an image it cannot load).
+  if (!files.refusal().empty()) throw Error(files.refusal());
   if (!ok) throw Error(path + ": not a valid glTF file: " + one_line(err));
   return model;
 }

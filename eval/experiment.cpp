@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "eval/frame_cache.h"
 #include "eval/metrics.h"
+#include "eval/run_memory.h"
 #include "filters/method.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
@@ -190,7 +191,6 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
                 std::to_string(window) + "x" + std::to_string(window) + " (the SSIM window)");
   if (c.gradients) validate(c.gradient);
   const Scene scene = load_scene(c.scene);
-  FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
   for (const MethodSpec& spec : c.methods) methods.push_back(make_spec_method(c, spec));
   const int frames = c.last_frame - c.first_frame + 1;
@@ -215,6 +215,13 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   RenderSettings input = input_settings(c);
   for (const std::unique_ptr<Method>& m : methods)
     if (m->reads_shading_term()) input.trace.shading_samples = kTrmvShadingSamples;
+  // What the run will hold, against the memory there is (run_memory.h), before anything is rendered or cached.
+  uint64_t most_method_planes = 0;
+  for (const std::unique_ptr<Method>& m : methods) most_method_planes = std::max(most_method_planes, method_planes(*m));
+  require_run_fits("eval", c.width, c.height,
+                   eval_planes(rendered_frame_planes(scene, input, gradients), frames, most_method_planes),
+                   memory_budget());
+  FrameCache cache(c.cache_dir, scene);
   if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, c.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
     if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input));

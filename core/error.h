@@ -12,4 +12,11 @@ struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An Error caused by a failed system call, with its errno, for a caller that treats some causes apart (a read-only
+// cache is read, a full one fails the run: eval/frame_cache.h).
+struct SystemError : Error {
+  SystemError(const std::string& message, int code) : Error(message), code(code) {}
+  int code;
+};
+
 }  // namespace rtdr

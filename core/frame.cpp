@@ -1,6 +1,7 @@
 #include "core/frame.h"
 
 #include "core/error.h"
+#include "core/hash.h"
 
 #include <utility>
 
@@ -98,5 +99,16 @@ void Frame::set_vec3(const std::string& layer, const std::vector<glm::vec3>& v) 
 void Frame::set_rgb(const std::string& layer, const std::vector<glm::vec3>& v) { set_group3(layer, kRGB, v); }
 std::vector<glm::vec3> Frame::get_vec3(const std::string& layer) const { return get_group3(layer, kXYZ); }
 std::vector<glm::vec3> Frame::get_rgb(const std::string& layer) const { return get_group3(layer, kRGB); }
+
+std::string frame_checksum(const Frame& frame) {
+  Fnv1a64 h;
+  const uint32_t size[2] = {uint32_t(frame.width()), uint32_t(frame.height())};
+  h.words(size, 2);
+  for (const auto& [name, plane] : frame.float_channels())
+    h.text("float").text(name).floats(plane.data.data(), plane.data.size());
+  for (const auto& [name, plane] : frame.uint_channels())
+    h.text("uint").text(name).words(plane.data.data(), plane.data.size());
+  return h.hex();
+}
 
 }  // namespace rtdr

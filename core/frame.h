@@ -88,4 +88,10 @@ class Frame {
   std::map<std::string, UIntPlane> uints_;
 };
 
+// A checksum of the frame's pixels: its size, then every channel's name, type and values, in name order (FNV-1a over
+// 32-bit values, core/hash.h), as 16 hex digits. The renderer stamps it into a frame's header as rtdr.checksum
+// (trace/render_key.h), so a stored frame that changed in any value, channel or size since it was rendered can be
+// told from the frame the renderer made. Attributes and the source path are not part of it.
+std::string frame_checksum(const Frame& frame);
+
 }  // namespace rtdr

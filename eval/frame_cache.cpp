@@ -2,102 +2,145 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "core/hash.h"
 
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 namespace rtdr {
+namespace fs = std::filesystem;
 namespace {
 
-// Bump when the meaning of rendered layers changes, so old cache entries are not reused.
-// 2: frames gained TRMV's shadow motion (motion.shadow, motion.shadow_splat); direct.shading, when rendered, is in
-// the key ("-shading64"). 3: the energy-preserving dielectric (trace/brdf.h) and double-sided emitters.
-// 4: frames gained the dual motion vector (motion.dual, motion/dual.h) and the cones' samples (path.incoming, path.pdf).
-constexpr int kCacheVersion = 4;
+constexpr const char* kStagingPrefix = ".rtdr-cache-staging-";
 
-// FNV-1a, 64 bits (Fowler, Noll, Vo): a small, well-spread hash of the scene file's bytes.
-uint64_t fnv1a(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
+// The readable start of an entry's folder name: the scene's name with anything but letters, digits, '.', '-' and
+// '_' replaced, cut at 48 characters.
+std::string readable(const std::string& scene_name) {
+  std::string s;
+  for (const char c : scene_name.substr(0, 48))
+    s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
+  return s.empty() || s[0] == '.' ? "_" + s : s;  // never a hidden folder
 }
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read scene file '" + path + "' for the frame cache");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+// Every float of the frame finite, as filter checks its input (docs/reliability.md, promise 5); "" when so.
+std::string non_finite(const Frame& frame) {
+  std::vector<std::string> channels;
+  for (const auto& [name, plane] : frame.float_channels()) channels.push_back(name);
+  try {
+    require_finite(frame, channels);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
+
+void warn(const std::string& message) { std::fprintf(stderr, "rtdr: warning: %s\n", message.c_str()); }
 
 }  // namespace
 
-FrameCache::FrameCache(std::string dir, const Scene& scene)
-    : dir_(std::move(dir)), scene_(scene), scene_hash_(fnv1a(read_bytes(scene.source))) {}
-
-std::string FrameCache::path(int frame_index, int width, int height, const RenderSettings& s,
-                             const GradientParams* gradients) const {
-  // Gradient frames differ from plain ones at their gradient pixels: their own directory, named by every
-  // parameter, e.g. "-gradients-stratum_size3-selection0-seed_reuse1-seed_chains1-light_cdf0".
-  std::string key_suffix;
-  if (gradients) {
-    key_suffix = "-gradients";
-    const std::vector<ParamInfo> table = gradient_param_table();
-    const std::vector<double> values = param_values(*gradients);
-    for (size_t k = 0; k < table.size(); ++k) key_suffix += "-" + table[k].name + std::to_string(int64_t(values[k]));
-  }
-  char name[160];
-  std::snprintf(name, sizeof name, "%s-%016llx-v%d/%dx%d-spp%d-seed%u-b%d", scene_.name.c_str(),
-                (unsigned long long)scene_hash_, kCacheVersion, width, height, s.spp, s.seed, s.trace.max_bounces);
-  if (s.trace.shading_samples > 0) key_suffix = "-shading" + std::to_string(s.trace.shading_samples) + key_suffix;
-  char file[32];
-  std::snprintf(file, sizeof file, "frame_%04d.exr", frame_index);
-  return (std::filesystem::path(dir_) / (name + key_suffix) / file).string();
+FrameCache::FrameCache(std::string dir, const Scene& scene) : dir_(std::move(dir)), scene_(scene) {
+  // What a dead run staged goes now, even when this run only reads (a StagingFolder removes it too when made).
+  if (!dir_.empty()) StagingFolder::remove_stale(dir_, kStagingPrefix);
 }
 
-void FrameCache::store(const std::string& file, const Frame& frame) const {
-  if (file.empty()) return;
+FrameCache::~FrameCache() = default;
+
+std::string FrameCache::path(const Attributes& key) const {
+  Fnv1a64 h;
+  for (const auto& [name, value] : key)
+    if (name != "rtdr.frame") h.text(name).text(value);
+  const std::string folder = readable(key.at("rtdr.scene")) + "-" + key.at("rtdr.size") + "-spp" +
+                             key.at("rtdr.spp") + (key.at("rtdr.gradients") == "1" ? "-gradients" : "") + "-" +
+                             h.hex();
+  char file[32];
+  std::snprintf(file, sizeof file, "frame_%04d.exr", std::stoi(key.at("rtdr.frame")));
+  return (fs::path(dir_) / folder / file).string();
+}
+
+std::unique_ptr<Frame> FrameCache::load(const Attributes& key) const {
+  if (dir_.empty()) return nullptr;
+  const std::string file = path(key);
   std::error_code ec;
-  std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ec);
-  write_exr(file, frame);
+  if (!fs::exists(file, ec)) return nullptr;
+  auto frame = std::make_unique<Frame>();
+  std::string why;
+  try {
+    *frame = read_exr(file);
+    why = key_mismatch(*frame, key);  // another key of the same hash, or an entry of an older rtdr
+    if (why.empty()) why = checksum_mismatch(*frame);  // changed after it was rendered
+    if (why.empty()) why = non_finite(*frame);
+  } catch (const Error& e) {
+    why = e.what();  // not a readable frame: truncated, not an EXR, ...
+  }
+  if (why.empty()) return frame;
+  warn("cache entry '" + file + "' is not the frame asked for (" + why + "): rendering it again");
+  return nullptr;
+}
+
+void FrameCache::store(const Attributes& key, const Frame& frame) {
+  if (dir_.empty() || read_only_) return;
+  if (!staging_) {
+    std::error_code ec;
+    fs::create_directories(dir_, ec);
+    try {
+      staging_ = std::make_unique<StagingFolder>(dir_, kStagingPrefix);
+    } catch (const SystemError& e) {
+      // A cache we cannot write to is still read; a full disk or any other failure fails the run.
+      if (e.code != EROFS && e.code != EACCES && e.code != EPERM) throw Error("frame cache '" + dir_ + "': " + e.what());
+      read_only_ = true;
+      warn("frame cache '" + dir_ + "' cannot be written (" + e.what() + "): frames rendered now are not stored");
+      return;
+    }
+  }
+  const std::string file = path(key);
+  const std::string staged = (fs::path(staging_->path()) / fs::path(file).filename()).string();
+  write_exr(staged, frame);
+  std::error_code ec;
+  fs::create_directories(fs::path(file).parent_path(), ec);
+  fs::rename(staged, file, ec);  // one file system: the staging folder is inside the cache
+  if (ec) {
+    const std::string reason = ec.message();
+    fs::remove(staged, ec);
+    throw Error("frame cache: cannot store '" + file + "': " + reason);
+  }
 }
 
 Frame FrameCache::get(int frame_index, int width, int height, const RenderSettings& settings, bool* hit) {
-  const std::string file = dir_.empty() ? std::string() : path(frame_index, width, height, settings);
-  if (!file.empty() && std::filesystem::exists(file)) {
+  const Attributes key = render_key(scene_, frame_index, width, height, settings);
+  if (std::unique_ptr<Frame> cached = load(key)) {
     if (hit) *hit = true;
-    return read_exr(file);
+    return std::move(*cached);
   }
   if (hit) *hit = false;
   Frame frame = render_frame(scene_, frame_index, width, height, settings);
-  store(file, frame);
+  store(key, frame);
   return frame;
 }
 
 std::vector<Frame> FrameCache::gradient_frames(int first, int last, int width, int height,
                                                const RenderSettings& settings, const GradientParams& params) {
-  const auto file = [&](int f) { return dir_.empty() ? std::string() : path(f, width, height, settings, &params); };
-  const auto cached = [&](int f) { return !dir_.empty() && std::filesystem::exists(file(f)); };
+  const auto key = [&](int f) { return render_key(scene_, f, width, height, settings, &params); };
   const auto render = [&](int f, const Frame* prev) {
     Frame frame = render_frame_with_gradients(scene_, f, width, height, settings, params, prev);
-    store(file(f), frame);
+    store(key(f), frame);
     return frame;
   };
   std::vector<Frame> frames;
   std::optional<Frame> prev;  // frame f - 1, once known
   for (int f = first; f <= last; ++f) {
-    const bool hit = cached(f);
-    if (!hit && !prev && f > 0) {
+    std::unique_ptr<Frame> cached = load(key(f));
+    if (!cached && !prev && f > 0) {
       // Frame f needs f - 1: go back to the latest cached frame (or to the start) and render forward.
       int from = f - 1;
-      while (from >= 0 && !cached(from)) --from;
-      if (from >= 0) prev = read_exr(file(from));
+      std::unique_ptr<Frame> found;
+      while (from >= 0 && !(found = load(key(from)))) --from;
+      if (found) prev = std::move(*found);
       for (int g = from + 1; g < f; ++g) prev = render(g, prev ? &*prev : nullptr);
     }
-    frames.push_back(hit ? read_exr(file(f)) : render(f, prev ? &*prev : nullptr));
+    frames.push_back(cached ? std::move(*cached) : render(f, prev ? &*prev : nullptr));
     prev = frames.back();
   }
   return frames;

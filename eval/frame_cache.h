@@ -1,15 +1,29 @@
 // Rendered frames cached on disk, so reruns of an experiment are cheap: reference frames take minutes.
-// A cache entry is keyed by everything the frame depends on: the scene file's bytes, the frame index, the
-// size, the samples per pixel, the seed and the bounce count (and a version number bumped whenever the
-// renderer's output changes meaning), and for A-SVGF's input every gradient parameter. Entries are EXR files
-// written atomically, so an interrupted run never leaves a half-written entry behind.
+//
+// An entry is one rendered frame, found by its render key (trace/render_key.h): the scene's content, the frame,
+// the size, every render setting, and for A-SVGF's input every gradient parameter. Its path is
+//   <cache>/<scene>-<W>x<H>-spp<N>-<hash>/frame_<index>.exr
+// where <hash> is the FNV-1a of the whole key but the frame index (every attribute, whatever its length), and the
+// readable part before it is for people only: it may be cut short, the hash never is. The entry's header holds
+// its full key and the checksum of its planes, and a frame is used only when both match what was asked and every
+// float in it is finite; any other entry (another key that shares the hash, a changed or truncated file, a NaN)
+// is rendered again, with a warning, and replaced.
+//
+// Writes are staged: each frame is written into a hidden, locked staging folder inside the cache
+// (<cache>/.rtdr-cache-staging-*, core/atomic_file.h StagingFolder) and renamed into place, so an entry appears
+// whole or not at all, even when the run is killed; a later run removes what a dead one left. A read-only cache is
+// read, and what it lacks is rendered without being stored (one warning). A write that fails otherwise (a full
+// disk) fails the run with the reason and leaves no partial entry.
 #pragma once
 
+#include "core/atomic_file.h"
 #include "core/frame.h"
 #include "scenes/scene.h"
 #include "trace/gradients.h"
 #include "trace/render_frame.h"
+#include "trace/render_key.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +33,7 @@ class FrameCache {
  public:
   // `dir` is created on first use; an empty `dir` disables caching.
   FrameCache(std::string dir, const Scene& scene);
+  ~FrameCache();
 
   // The frame from the cache, or rendered (and stored) when it is not there. `hit` says which.
   Frame get(int frame_index, int width, int height, const RenderSettings& settings, bool* hit = nullptr);
@@ -27,16 +42,19 @@ class FrameCache {
   // is (or from frame 0), and stored too.
   std::vector<Frame> gradient_frames(int first, int last, int width, int height, const RenderSettings& settings,
                                      const GradientParams& params);
-  // Where the entry for these inputs lives; with `gradients`, the entry of a frame with gradient samples.
-  std::string path(int frame_index, int width, int height, const RenderSettings& settings,
-                   const GradientParams* gradients = nullptr) const;
+  // Where the entry of the frame with this render key lives (trace/render_key.h render_key).
+  std::string path(const Attributes& key) const;
 
  private:
-  void store(const std::string& file, const Frame& frame) const;
+  // The entry of `key` when it is there and valid; otherwise nullptr, after a warning when it was there but not
+  // valid.
+  std::unique_ptr<Frame> load(const Attributes& key) const;
+  void store(const Attributes& key, const Frame& frame);
 
   std::string dir_;
   const Scene& scene_;
-  uint64_t scene_hash_;
+  std::unique_ptr<StagingFolder> staging_;  // made on the first store
+  bool read_only_ = false;                  // the first store found the cache read-only
 };
 
 }  // namespace rtdr

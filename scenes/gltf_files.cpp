@@ -54,6 +54,7 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     if (!files.allowed(path)) throw Error(files.refusal());
     RegularFile file(path, files.scene() + ": '" + path + "'");
     *out = file.read_all(memory_budget().bytes, "bytes of memory available (core/memory_budget.h)");
+    if (path == files.scene()) files.keep_scene_bytes(*out);  // Scene::content_hash hashes what was parsed
     return true;
   } catch (const Error& e) {
     files.refuse(e.what());

@@ -11,6 +11,7 @@
 #include "scenes/catalog.h"
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/regular_file.h"
 #include "scenes/gltf_parts.h"
 
@@ -39,12 +40,12 @@ std::string one_line(std::string text) {
   return text.empty() ? "tinygltf could not parse it" : text;
 }
 
-tinygltf::Model parse_file(const std::string& path) {
+// Parses the scene file at `path`; `files` reads it, and every file it names (gltf_files.cpp).
+tinygltf::Model parse_file(const std::string& path, gltf::SceneFiles& files) {
   const std::string kind = describe_path_kind(path);
   if (kind == "missing")
     throw Error(path + ": no such scene file (a bare name like 'cornell' means " RTDR_SCENE_DIR "/cornell.gltf)");
   if (kind != "a regular file") throw Error(path + ": the scene file is " + kind + ", not a regular file");
-  gltf::SceneFiles files(path);  // what tinygltf may read and decode (gltf_files.cpp)
   tinygltf::TinyGLTF reader;
   files.attach(reader);
   tinygltf::Model model;
@@ -312,6 +313,20 @@ void append_default_material(Scene& scene) {
   scene.materials.push_back(default_material);
 }
 
+// Scene::content_hash: the file's bytes (those tinygltf parsed, not read again), then each buffer's bytes and each
+// decoded image (size, components, bits, pixels) as tinygltf loaded them, whether embedded or from files beside
+// the scene.
+std::string content_hash(const std::vector<unsigned char>& bytes, const tinygltf::Model& model) {
+  Fnv1a64 h;
+  h.text(std::string(bytes.begin(), bytes.end()));
+  for (const tinygltf::Buffer& buffer : model.buffers) h.text("buffer").bytes(buffer.data.data(), buffer.data.size());
+  for (const tinygltf::Image& image : model.images) {
+    const int32_t shape[4] = {image.width, image.height, image.component, image.bits};
+    h.text("image").bytes(shape, sizeof shape).bytes(image.image.data(), image.image.size());
+  }
+  return h.hex();
+}
+
 }  // namespace
 
 std::string resolve_scene_path(const std::string& name_or_path) {
@@ -324,9 +339,11 @@ Scene load_scene(const std::string& name_or_path) {
   Scene scene;
   scene.source = resolve_scene_path(name_or_path);
   scene.name = std::filesystem::path(scene.source).stem().string();
-  const tinygltf::Model model = parse_file(scene.source);
+  gltf::SceneFiles files(scene.source);  // what tinygltf may read and decode (gltf_files.cpp)
+  const tinygltf::Model model = parse_file(scene.source, files);
   const Source src{model, scene.source};
   check_version(src);
+  scene.content_hash = content_hash(files.scene_bytes(), model);
 
   gltf::load_materials(src, scene);
   std::vector<int> first_mesh_of_gltf_mesh;  // glTF mesh -> its primitive 0's Mesh

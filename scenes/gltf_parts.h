@@ -29,6 +29,9 @@ class SceneFiles {
   explicit SceneFiles(const std::string& scene_path);
   void attach(tinygltf::TinyGLTF& reader);  // the callbacks point at this object: keep it alive while tinygltf loads
   const std::string& refusal() const { return refusal_; }
+  // The scene file's bytes as tinygltf read and parsed them (empty before the load).
+  const std::vector<unsigned char>& scene_bytes() const { return scene_bytes_; }
+  void keep_scene_bytes(const std::vector<unsigned char>& bytes) { scene_bytes_ = bytes; }
   const std::string& scene() const { return scene_; }
   // Whether tinygltf may read `path`; records the refusal of a path outside the scene's folder.
   bool allowed(const std::string& path);
@@ -38,6 +41,7 @@ class SceneFiles {
   std::string scene_, base_;
   std::filesystem::path folder_;
   std::string refusal_;
+  std::vector<unsigned char> scene_bytes_;
 };
 
 // The file being loaded: tinygltf's parsed model and the path that error messages name.

@@ -87,6 +87,11 @@ struct ScenePose;
 struct Scene {
   std::string name;    // file stem, e.g. "cornell"
   std::string source;  // the file it was loaded from
+  // The scene's identity: FNV-1a (core/hash.h) of the glTF file's bytes and of every buffer and image it loads
+  // (external .bin and image files included), as 16 hex digits. Two files of one name but other content differ
+  // here; frames record it (rtdr.scene.hash, trace/render_key.h) and the frame cache keys on it. Empty for a
+  // scene built in code.
+  std::string content_hash;
   float fps = 30.0f;   // frame f is at time t = f / fps (scene extras "rtdr_fps", default 30)
 
   std::vector<Mesh> meshes;

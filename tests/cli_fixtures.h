@@ -52,9 +52,13 @@ inline RunResult checked_for_sanitizers(RunResult result, const std::string& arg
 // Runs `rtdr` with `args` as its argument vector, through no shell: a quote, a space or "$(...)" in an
 // argument reaches rtdr as it is. stdout and stderr are captured in files of `dir`; `env` entries
 // ("NAME=value") are added to its environment.
+// `wrapper` goes before rtdr (e.g. {"setpriv", "--reuid=65534", ...}: a program that runs the rest of its
+// arguments), found on PATH.
 inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::path& dir,
-                               const std::vector<std::string>& env = {}) {
-  std::vector<std::string> argv_text = {RTDR_EXE};
+                               const std::vector<std::string>& env = {},
+                               const std::vector<std::string>& wrapper = {}) {
+  std::vector<std::string> argv_text = wrapper;
+  argv_text.push_back(RTDR_EXE);
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv, envp;
   for (std::string& a : argv_text) argv.push_back(a.data());
@@ -70,9 +74,9 @@ inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::p
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+  const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return {-1, "", "cannot start " RTDR_EXE};
+  if (spawned != 0) return {-1, "", "cannot start " + argv_text[0]};
   int status = 0;
   waitpid(pid, &status, 0);
   std::string joined;

@@ -154,10 +154,10 @@ TEST_CASE("gradient inputs are cached under every gradient parameter and continu
   const rtdr::GradientParams params;
   rtdr::GradientParams other;
   other.light_cdf = 1;
-  const auto path = [&](int f) { return cache.path(f, 24, 16, settings, &params); };
-  CHECK(path(3) != cache.path(3, 24, 16, settings, &other));
-  CHECK(path(3) != cache.path(3, 24, 16, settings));
-  CHECK_THAT(path(3), Catch::Contains("-gradients-stratum_size3-selection0-seed_reuse1-seed_chains1-light_cdf0"));
+  const auto path = [&](int f) { return cache.path(rtdr::render_key(scene, f, 24, 16, settings, &params)); };
+  CHECK(path(3) != cache.path(rtdr::render_key(scene, 3, 24, 16, settings, &other)));
+  CHECK(path(3) != cache.path(rtdr::render_key(scene, 3, 24, 16, settings)));
+  CHECK_THAT(path(3), Catch::Contains("pillars-24x16-spp1-gradients-"));
 
   // The sequence as render_frame_with_gradients makes it, each frame from the one before.
   std::vector<rtdr::Frame> direct;

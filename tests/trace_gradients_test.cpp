@@ -291,16 +291,41 @@ TEST_CASE("gradient samples refuse a previous frame of another size, more than 1
   GradientParams other;
   other.stratum_size = 4;
   CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, {}, other, &small),
-                    Catch::Contains("rtdr.gradient.stratum_size = 3, this frame with 4"));
+                    Catch::Contains("rtdr.gradient.stratum_size is 3, not 4"));
   RenderSettings reseeded;
   reseeded.seed = 9;
   CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, reseeded, {}, &small), Catch::Contains("rtdr.seed"));
   CHECK_THROWS_WITH(render_frame_with_gradients(load_scene("static"), 1, 16, 9, {}, {}, &small),
-                    Catch::Contains("rtdr.scene = cornell"));
+                    Catch::Contains("rtdr.scene is cornell, not static"));
   Frame unrecorded = small;
   unrecorded.attributes.clear();
   CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &unrecorded),
                     Catch::Contains("does not record"));
+  // Every setting of the tracer changes f(G, seed), so each is part of the sequence: the bounces, the regularized
+  // roughness and the shading term (issue: a sequence rendered with one bounce was continued with none, and every
+  // indirect delta became the whole previous indirect light).
+  RenderSettings direct_only;
+  direct_only.trace.max_bounces = 0;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, direct_only, {}, &small),
+                    Catch::Contains("rtdr.max_bounces is 1, not 0"));
+  RenderSettings rough;
+  rough.trace.regularized_roughness = 0.5f;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, rough, {}, &small),
+                    Catch::Contains("rtdr.regularized_roughness is 0.300000012, not 0.5"));
+  RenderSettings shaded;
+  shaded.trace.shading_samples = 4;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 1, 16, 9, shaded, {}, &small),
+                    Catch::Contains("rtdr.shading_samples is 0, not 4"));
+  // Frame i continues frame i-1, not another frame of the sequence.
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 2, 16, 9, {}, {}, &small),
+                    Catch::Contains("is frame 0, not frame 1"));
+  // A scene is its content, not its name: the same stem with other content is another scene.
+  Scene edited = scene;
+  edited.content_hash = "0123456789abcdef";
+  CHECK_THROWS_WITH(render_frame_with_gradients(edited, 1, 16, 9, {}, {}, &small),
+                    Catch::Contains("rtdr.scene.hash is " + scene.content_hash + ", not 0123456789abcdef"));
+  // The control: frame 1 of the same sequence continues it.
+  CHECK(render_frame_with_gradients(scene, 1, 16, 9, {}, {}, &small).attributes.at("rtdr.frame") == "1");
 }
 
 TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene, with reuse it is lower") {

@@ -7,6 +7,7 @@
 #include "motion/backproject.h"
 #include "motion/forward_project.h"
 #include "trace/gradient_select_shared.h"
+#include "trace/render_key.h"
 #include "trace/sampler.h"
 
 #include <algorithm>
@@ -37,29 +38,25 @@ std::vector<float> luminance_of(const Frame& frame, const std::string& layer) {
   return l;
 }
 
-// What a frame with gradient samples records in its header, so that the next frame can check it continues the
-// same sequence: the scene, the global seed and every gradient parameter.
-std::map<std::string, std::string> gradient_attributes(const Scene& scene, uint32_t global_seed,
-                                                       const GradientParams& params) {
-  std::map<std::string, std::string> a = {{"rtdr.scene", scene.name}, {"rtdr.seed", std::to_string(global_seed)}};
-  const std::vector<ParamInfo> table = gradient_param_table();
-  const std::vector<double> values = param_values(params);
-  for (size_t k = 0; k < table.size(); ++k)
-    a["rtdr.gradient." + table[k].name] = std::to_string(int64_t(values[k]));  // every row is an int
-  return a;
-}
-
-// Throws rtdr::Error naming the first attribute of `expected` that `prev` lacks or holds another value of.
-void require_same_sequence(const Frame& prev, const std::map<std::string, std::string>& expected) {
-  for (const auto& [name, value] : expected) {
-    const auto it = prev.attributes.find(name);
-    const std::string what = prev.source.empty() ? std::string("the previous frame") : "'" + prev.source + "'";
-    if (it == prev.attributes.end())
-      throw Error(what + " does not record " + name + ": it was not rendered with gradient samples");
-    if (it->second != value)
-      throw Error(what + " was rendered with " + name + " = " + it->second + ", this frame with " + value +
-                  "; gradient samples continue one sequence");
-  }
+// Throws rtdr::Error unless `prev` is frame i-1 of the sequence whose frame i has the render key `key`: the same
+// key in every attribute but the frame index (trace/render_key.h: the scene's content, size, seed, every setting of
+// the tracer and every gradient parameter), and frame i-1's index.
+void require_same_sequence(const Frame& prev, const Attributes& key, int frame_index) {
+  const std::string what = prev.source.empty() ? std::string("the previous frame") : "'" + prev.source + "'";
+  if (!prev.attributes.count("rtdr.renderer"))
+    throw Error(what + " does not record how it was rendered (no rtdr.renderer in its header: another program, or "
+                "an older rtdr); render the sequence from frame 0");
+  if (prev.attributes.count("rtdr.gradients") && prev.attributes.at("rtdr.gradients") != "1")
+    throw Error(what + " was not rendered with gradient samples; gradient samples continue one sequence");
+  const std::string mismatch = key_mismatch(prev, key, {"rtdr.frame"});
+  if (!mismatch.empty())
+    throw Error(what + " does not continue this sequence (its header's " + mismatch + "); render the sequence from "
+                "frame 0 with the same scene and settings");
+  const auto it = prev.attributes.find("rtdr.frame");
+  if (it == prev.attributes.end()) throw Error(what + " does not record its frame index (rtdr.frame)");
+  if (it->second != std::to_string(frame_index - 1))
+    throw Error(what + " is frame " + it->second + ", not frame " + std::to_string(frame_index - 1) +
+                ", the one before frame " + std::to_string(frame_index));
 }
 
 }  // namespace
@@ -233,9 +230,9 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
   // Steps 2-5, then 6: merge each sample and its seed into the visibility buffer at jbar [Fig. 2d, Eq. 6].
   PreviousFrame previous;
   std::vector<GradientSample> samples;
-  const std::map<std::string, std::string> attributes = gradient_attributes(scene, settings.seed, params);
+  const Attributes key = render_key(scene, frame_index, width, height, settings, &params);
   if (prev) {
-    require_same_sequence(*prev, attributes);
+    require_same_sequence(*prev, key, frame_index);
     previous = PreviousFrame::from_frame(*prev);
     previous.require_fits(scene, frame_index, prev->source);
     samples = gradient_samples(scene, g, previous, params, settings.seed);
@@ -259,7 +256,6 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
 
   // Step 7: the G-buffer, motion and shading of the merged buffer; jbar's shading is f_i(G~, xi_{i-1,j}).
   Frame frame(width, height);
-  frame.attributes = attributes;
   write_gbuffer_layers(scene, g, frame);
   write_motion_layers(scene, g, frame);
   const TraceStats traced = trace_layers(scene, g, settings, frame, rows_done, &seeds);
@@ -277,6 +273,7 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
     prev_direct.data[i] = previous.luminance_direct[s.source];
     prev_indirect.data[i] = previous.luminance_indirect[s.source];
   }
+  stamp_render_header(frame, key);  // trace/render_key.h
   return frame;
 }
 

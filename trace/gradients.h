@@ -145,10 +145,10 @@ std::vector<GradientSample> gradient_samples(const Scene& scene, const FrameGeom
 // Steps 1-8: frame `frame_index` rendered with its gradient samples merged, with the layers of render_frame plus
 // gradient.source (uint: j where the pixel is a gradient sample, else kInvalidId), gradient.prev_direct and
 // gradient.prev_indirect (frame i-1's luminance at j; 0 elsewhere), rng.seed_frame (uint: the frame the pixel's
-// seed was made in), and the header attributes rtdr.scene,
-// rtdr.seed and rtdr.gradient.<parameter>. `prev` is frame i-1 as this function rendered it, or null for the
-// first frame; its attributes must match (same scene, seed and parameters). Needs settings.spp == 1: a gradient
-// compares two 1-spp samples.
+// seed was made in), and the render key of trace/render_key.h with rtdr.gradients = 1 and every parameter. `prev` is
+// frame i-1 as this function rendered it, or null for the first frame; its header must hold the same key but for
+// the frame index (the same scene content, size, seed, tracer settings and parameters), or rtdr::Error says which
+// attribute differs. Needs settings.spp == 1: a gradient compares two 1-spp samples.
 Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width, int height,
                                   const RenderSettings& settings, const GradientParams& params, const Frame* prev,
                                   TraceStats* stats = nullptr, const RowsDone& rows_done = {});

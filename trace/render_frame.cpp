@@ -1,6 +1,8 @@
 // Tracing every pixel of a frame, and writing the radiance layers. See render_frame.h.
 #include "trace/render_frame.h"
 
+#include "trace/render_key.h"
+
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -160,6 +162,7 @@ Frame render_frame(const Scene& scene, int frame_index, int width, int height, c
   write_motion_layers(scene, geometry, frame);
   const TraceStats s = trace_layers(scene, geometry, settings, frame, rows_done);
   write_path_motion_layers(scene, geometry, frame);
+  stamp_render_header(frame, render_key(scene, frame_index, width, height, settings));  // trace/render_key.h
   if (stats) *stats = s;
   return frame;
 }

@@ -1,4 +1,4 @@
-// Hostile files, the third round (issue 32): what the files a user hands `rtdr` can declare or be. A FIFO or a
+// Hostile files, the third round: what the files a user hands `rtdr` can declare or be. A FIFO or a
 // folder where a glTF buffer, image or EXR frame should be; an 8 KB EXR that declares 3 GiB of pixels; a --size
 // whose run cannot fit in memory; a previous frame whose ids lie beyond the scene; a frame that `rtdr check`
 // passed and `filter` refused; a glTF URI that climbs out of the scene's folder. Run through the real binary with
@@ -165,7 +165,7 @@ std::string exr_header(int32_t width, int32_t height, uint8_t compression) {
 
 // A 16384 x 16384 ZIP file of 3 FLOAT channels (3 GiB of pixels): the header, the table of its 1024 chunks of 16
 // rows, every entry pointing at the one chunk that follows (row 0, `chunk_bytes` of data). With 29 bytes of data it
-// is the 8,542-byte file of issue 32; with 3.2 MB it could hold its pixels (ZIP decodes at most 1032 bytes from
+// is the 8,542-byte file a user found taking 3.16 GB; with 3.2 MB it could hold its pixels (ZIP decodes at most 1032 bytes from
 // one), and only memory can refuse it.
 std::string declared_3gib_exr(size_t chunk_bytes) {
   std::string f = exr_header(16384, 16384, 3);

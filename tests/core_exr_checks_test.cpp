@@ -1,6 +1,6 @@
 // Tests of core/exr_checks.cpp, the checks read_exr makes before OpenEXR allocates: the expansion bounds against
 // what zlib really achieves on the most compressible frame there is (all zeros), which read_exr still reads; the
-// plausibility rule on the numbers of issue 32's 8,542-byte file and of a file that could hold its pixels; and the
+// plausibility rule on the numbers of an 8,542-byte file that took 3.16 GB and of a file that could hold its pixels; and the
 // memory budget, passed in.
 #include "core/exr_checks.h"
 

@@ -29,7 +29,7 @@ TEST_CASE("memory budget: MemAvailable, VmSize and cgroup numbers parsed as the 
   CHECK_FALSE(cgroup_number("12abc\n"));
 }
 
-TEST_CASE("memory budget: the least of its sources, named; none at all bounds nothing") {
+TEST_CASE("memory budget: the least of its sources, named, and none at all bounds nothing") {
   CHECK(budget_from({}).bytes == UINT64_MAX);
   CHECK(budget_from({}).bound_by == "nothing");
   const MemoryBudget by_cgroup = budget_from({8000, 3000, 5000});

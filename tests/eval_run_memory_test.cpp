@@ -33,7 +33,7 @@ TEST_CASE("run memory: the planes each command keeps, and the bytes at a size") 
   CHECK(run_bytes({uint64_t(1) << 62, ""}, 16384, 16384) == UINT64_MAX);  // saturates, never wraps
 }
 
-TEST_CASE("run memory: a size just over the budget is refused with the size and the estimate; one at it is not") {
+TEST_CASE("run memory: a size just over the budget is refused with the size and the estimate, one at it is not") {
   const RunPlanes run = render_planes(90, true);
   const MemoryBudget budget{run_bytes(run, 640, 360), "MemAvailable"};
   CHECK_NOTHROW(require_run_fits("render", 640, 360, run, budget));

@@ -108,7 +108,7 @@ TEST_CASE("user buffers: strides whose products overflow are refused, not wrappe
   CHECK(float_plane({buffer.data(), 1, 1, 1, max, 0}).at(0, 0) == 1.0f);
 }
 
-TEST_CASE("user buffers: zero strides mean packed; negative and short strides and sizes are refused") {
+TEST_CASE("user buffers: zero strides mean packed, and negative and short strides and sizes are refused") {
   std::vector<float> buffer(12);
   for (size_t i = 0; i < buffer.size(); ++i) buffer[i] = float(i);
   const RgbPlane packed = rgb_plane({buffer.data(), 2, 2, 3, 0, 0});  // 12 bytes a pixel, 24 a row

@@ -11,7 +11,7 @@
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <cstdio>
 

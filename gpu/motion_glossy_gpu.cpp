@@ -6,7 +6,7 @@
 #include "gpu/motion_port.h"
 #include "gpu/svgf_planes.h"
 #include "motion/glossy_shared.h"
-#include "trace/brdf.h"
+#include "scenes/scene.h"
 
 #include <cstdint>
 #include <cstring>

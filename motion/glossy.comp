@@ -12,7 +12,7 @@
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order, and glm's products are written out in glm's order (dot:
 // (x + y) + z; normalize: v * (1 / sqrt(dot(v, v))); mat3 * vec3: (c0 x + c1 y) + c2 z; mat4 * vec4:
-// raster/view.glsl). The random draw is integer hashing (trace/sampler.glsl), bit for bit. The divisions and
+// raster/view.glsl). The random draw is integer hashing (core/sampler.glsl), bit for bit. The divisions and
 // square roots are the device's, and so are asin, tan, atan, log, cos and sin (tests/gpu_motion_glossy_test.cpp
 // derives the bound).
 #version 450
@@ -22,7 +22,7 @@
 
 #include "filters/svgf/planes_shared.h"
 #include "raster/view.glsl"
-#include "trace/sampler.glsl"
+#include "core/sampler.glsl"
 
 // The workgroup's shape, per device: the SVGF ports' (planes_shared.h).
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,
@@ -74,7 +74,7 @@ vec3 transform_normal(uint k, vec3 n) {
   return r;
 }
 
-// trace/brdf.cpp's orthonormal_basis: a tangent t of the unit normal n (the bitangent is not needed here).
+// core/geometry.h's orthonormal_basis: a tangent t of the unit normal n (the bitangent is not needed here).
 vec3 orthonormal_tangent(vec3 n) {
   const float sign = (floatBitsToUint(n.z) & 0x80000000u) != 0u ? -1.0 : 1.0;  // std::copysign(1, n.z)
   precise float a = -1.0 / (sign + n.z);
@@ -156,7 +156,7 @@ bool footprint_axes(MirrorImage m, float sigma_theta, out vec2 a1, out vec2 a2) 
   return true;
 }
 
-// trace/brdf.cpp's ggx_alpha: std::max(kMinGgxAlpha, roughness^2).
+// scenes/scene.h's ggx_alpha: std::max(kMinGgxAlpha, roughness^2).
 float ggx_alpha(float roughness) {
   precise float alpha = roughness * roughness;
   return frame.min_ggx_alpha < alpha ? alpha : frame.min_ggx_alpha;

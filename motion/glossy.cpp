@@ -3,9 +3,9 @@
 #include "motion/glossy.h"
 
 #include "core/error.h"
+#include "core/geometry.h"
 #include "core/parallel.h"
-#include "trace/brdf.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <algorithm>
 #include <cmath>

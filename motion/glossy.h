@@ -23,7 +23,7 @@
 // 4. The footprint. "A glossy lobe (with the same roughness at s^C) traced from the virtual image of h_{i-1}
 //    towards s^C" meets the plane in a region "approximated by tracking the endpoints of major and minor axes"
 //    [TRMV21 Sec. 4.2]. The paper gives no width; ours (a choice):
-//    - GGX half-vectors with alpha = ggx_alpha(roughness) (trace/brdf.h) have P(theta_h < theta) =
+//    - GGX half-vectors with alpha = ggx_alpha(roughness) (scenes/scene.h) have P(theta_h < theta) =
 //      tan^2 theta / (alpha^2 + tan^2 theta). Setting it to 0.68, the mass of a Gaussian's +-1 standard
 //      deviation, gives tan theta_h = sqrt(0.68 / 0.32) alpha = 1.458 alpha. The reflected direction turns by
 //      twice the half-vector: sigma_theta = 2 atan(1.458 alpha), the lobe's angular standard deviation.
@@ -46,7 +46,7 @@
 //      projected and halved, a_k = (P_{i-1}(s^C + r t) - P_{i-1}(s^C - r t)) / 2 (the central difference, so
 //      perspective does not lean the footprint towards the near end), giving Sigma = a1 a1^T + a2 a2^T.
 // 5. One sample x^R = mu + a1 n1 + a2 n2, (n1, n2) standard normal by Box-Muller from new random numbers:
-//    Sampler(hash_combine(rng.seed, kGlossyStream), 0), uncorrelated with the path's own (trace/sampler.h), so a
+//    Sampler(hash_combine(rng.seed, kGlossyStream), 0), uncorrelated with the path's own (core/sampler.h), so a
 //    frame's vectors are a function of the frame alone.
 //
 // Which point is x_i (our choice, like motion/shadow.h's). The path's sampled ray leaves the lobe's centre, so

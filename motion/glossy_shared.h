@@ -53,7 +53,7 @@ RTDR_SHARED_CONST float kGlossyPi = 3.14159274f;
 
 // The push-constant block: the two eyes (View::eye; w unused), the frame's size (invocations outside it, the last
 // tiles, do nothing), the number of instances (an id at or beyond it is read as no instance: GPU only, the golden
-// pass's precondition) and the narrowest GGX lobe (trace/brdf.h's kMinGgxAlpha, ggx_alpha's floor).
+// pass's precondition) and the narrowest GGX lobe (scenes/scene.h's kMinGgxAlpha, ggx_alpha's floor).
 struct GlossyMotionPush {
   RTDR_GLOSSY_VEC4 eye;
   RTDR_GLOSSY_VEC4 prev_eye;

@@ -53,6 +53,16 @@ struct Material {
   Track<float> emissive_strength_track;
 };
 
+// The smallest GGX alpha used, so a mirror (roughness 0) keeps a finite, sampleable lobe.
+inline constexpr float kMinGgxAlpha = 1e-3f;
+// The GGX alpha of a material's roughness: glTF's perceptual roughness squared (glTF spec Appendix B, "alpha =
+// roughness^2"), at least kMinGgxAlpha. Here, beside the material, because both the path tracer's BRDF
+// (trace/brdf.h) and the glossy motion vector (motion/glossy.h) read a lobe's width from it.
+inline float ggx_alpha(float roughness) {
+  const float alpha = roughness * roughness;
+  return alpha > kMinGgxAlpha ? alpha : kMinGgxAlpha;  // std::max(kMinGgxAlpha, alpha), NaN included
+}
+
 struct Node {
   std::string name;
   int parent = -1;

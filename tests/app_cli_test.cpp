@@ -151,7 +151,7 @@ TEST_CASE("render --gradients adds the documented gradient layers, continues a s
   const RunResult restrided =
       run_rtdr("render --scene pillars --frames 5 --size 33x17 --gradients --gradient-stratum-size 2 --out " + out, dir);
   CHECK(restrided.exit_code != 0);
-  CHECK_THAT(restrided.err, Catch::Contains("rtdr.gradient.stratum_size = 3, this frame with 2"));
+  CHECK_THAT(restrided.err, Catch::Contains("rtdr.gradient.stratum_size is 3, not 2"));
   CHECK(std::count(restrided.err.begin(), restrided.err.end(), '\n') == 1);
   const RunResult resized = run_rtdr("render --scene pillars --frames 3 --size 32x17 --gradients --out " + out, dir);
   CHECK(resized.exit_code != 0);

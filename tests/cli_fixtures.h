@@ -52,8 +52,8 @@ inline RunResult checked_for_sanitizers(RunResult result, const std::string& arg
 // Runs `rtdr` with `args` as its argument vector, through no shell: a quote, a space or "$(...)" in an
 // argument reaches rtdr as it is. stdout and stderr are captured in files of `dir`; `env` entries
 // ("NAME=value") are added to its environment.
-// `wrapper` goes before rtdr (e.g. {"setpriv", "--reuid=65534", ...}: a program that runs the rest of its
-// arguments), found on PATH.
+// `wrapper` goes before rtdr (a program that runs the rest of its arguments, such as setpriv to run as another
+// user), found on PATH.
 inline RunResult run_rtdr_args(const std::vector<std::string>& args, const fs::path& dir,
                                const std::vector<std::string>& env = {},
                                const std::vector<std::string>& wrapper = {}) {

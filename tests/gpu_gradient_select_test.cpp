@@ -3,7 +3,7 @@
 // gradient_winners (trace/gradients.cpp), on rendered frame pairs of the pillars scene and on random inputs, with
 // the validation layer on. Skipped, with a message, where no Vulkan device exists.
 //
-// Bound: none, both are bit-identical. Selection 0 is integer work (the hash, trace/sampler.glsl, and the stratum's
+// Bound: none, both are bit-identical. Selection 0 is integer work (the hash, core/sampler.glsl, and the stratum's
 // pixel arithmetic); selection 1 compares fp32 sums of two luminances, each one correctly rounded addition on both
 // sides (`precise` in the shader; Vulkan requires correct rounding of an addition), and the comparisons are exact.
 // A device that flushes subnormal floats (Vulkan allows it without DenormPreserve) could tie two subnormal sums that

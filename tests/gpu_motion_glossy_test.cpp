@@ -6,7 +6,7 @@
 // What is exact. Both sides do the same fp32 operations in the same order: the shader marks every result `precise`
 // (no fma contraction, no reordering) and writes glm's dot, normalize (v * (1 / sqrt(v . v))), cross and matrix
 // products out in glm's order; the C++ is built without fma. The Gaussian draw's two uniform numbers are integer
-// hashing (trace/sampler.glsl), bit for bit. Pixels without a secondary hit are exact (0, valid 0). What differs:
+// hashing (core/sampler.glsl), bit for bit. Pixels without a secondary hit are exact (0, valid 0). What differs:
 // the square roots (Vulkan: from inversesqrt, under 4.5 ulp; C++: 0.5) and divisions (2.5 ulp; 0.5), and the
 // device's asin, atan (4096 ulp), tan (sin / cos), log (3 ulp, or 2^-21 absolute in [0.5, 2]), sin and cos (2^-11
 // absolute in [-pi, pi]; the shader moves Box-Muller's angle there, exactly, with a float 2 pi 1.75e-7 above 2 pi);
@@ -50,9 +50,10 @@
 #include "motion/glossy.h"
 #include "motion/glossy_shared.h"
 #include "scenes/gltf_loader.h"
-#include "trace/brdf.h"
+#include "core/geometry.h"
+#include "scenes/scene.h"
 #include "trace/render_frame.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include "gpu_fixtures.h"
 

@@ -6,7 +6,7 @@
 #include "core/parallel.h"
 #include "scene_fixtures.h"
 #include "scenes/gltf_loader.h"
-#include "trace/brdf.h"
+#include "scenes/scene.h"
 #include "trace/render_frame.h"
 
 #include <catch2/catch.hpp>

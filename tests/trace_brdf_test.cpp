@@ -8,7 +8,7 @@
 //      the directional albedo E(wo) is at most 1 (energy conservation);
 //   3. sampling against evaluation: the importance-sampled albedo agrees with a uniformly sampled one
 //      and with deterministic quadrature.
-// Monte Carlo uses std::mt19937 (not trace/sampler), so these tests do not depend on the sampler.
+// Monte Carlo uses std::mt19937 (not core/sampler), so these tests do not depend on the sampler.
 //
 // The ENERGY case found that glTF's diffuse weight 1 - F(v.h) returns up to 1.85x the incident energy at
 // grazing angles; trace/brdf.cpp coupled the lobes by (1 - F(n.v)) (1 - F(n.l)) instead, which lost 10% of a

@@ -19,7 +19,7 @@
 #include "scenes/gltf_loader.h"
 #include "trace/brdf.h"
 #include "trace/render_frame.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 #include "trace_fixtures.h"
 
 #include <catch2/catch.hpp>
@@ -39,7 +39,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------------------------------------
-// The test's own sampling, independent of trace/sampler.h and trace/brdf.h.
+// The test's own sampling, independent of core/sampler.h and trace/brdf.h.
 
 // Uniform numbers in [0, 1). std::mt19937's output sequence is fixed by the C++ standard, so every platform
 // draws the same numbers (std::uniform_real_distribution is not, so we convert by hand: 32 bits / 2^32).

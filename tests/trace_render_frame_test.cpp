@@ -11,7 +11,7 @@
 #include "core/parallel.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 #include "trace_fixtures.h"
 
 #include <catch2/catch.hpp>

@@ -20,7 +20,7 @@
 #include "scenes/gltf_loader.h"
 #include "trace/brdf.h"
 #include "trace/render_frame.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 #include "trace_fixtures.h"
 
 #include <catch2/catch.hpp>

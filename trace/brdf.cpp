@@ -39,8 +39,6 @@ glm::vec3 sample_ggx_visible_normal(const glm::vec3& v, float alpha, glm::vec2 u
 
 }  // namespace
 
-float ggx_alpha(float roughness) { return std::max(kMinGgxAlpha, roughness * roughness); }
-
 float ggx_d(float cos_theta_h, float alpha) {
   if (cos_theta_h <= 0.0f) return 0.0f;
   const float a2 = alpha * alpha;
@@ -82,14 +80,6 @@ float dielectric_specular_albedo_average(float roughness) {
   const int i = std::min(int(x), kRoughnessCount - 2);
   const float s = x - float(i);
   return (1.0f - s) * kAverageAlbedo[i] + s * kAverageAlbedo[i + 1];
-}
-
-void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = {1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
 }
 
 Bsdf::Bsdf(const SurfaceBsdf& m, const glm::vec3& n, const glm::vec3& wo)

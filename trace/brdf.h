@@ -22,6 +22,9 @@
 // surface; n is the shading normal; every vector is unit length and in the same space.
 #pragma once
 
+#include "core/geometry.h"
+#include "scenes/scene.h"
+
 #include <glm/glm.hpp>
 
 namespace rtdr {
@@ -51,10 +54,7 @@ struct BsdfSample {
   BsdfValue f;                 // f(wo, wi), so the caller need not evaluate again
 };
 
-// The smallest GGX alpha used, so a mirror (roughness 0) keeps a finite, sampleable lobe.
-inline constexpr float kMinGgxAlpha = 1e-3f;
-
-float ggx_alpha(float roughness);
+// ggx_alpha(roughness) and kMinGgxAlpha, the lobe's width from the material's roughness: scenes/scene.h.
 // GGX normal distribution D(h) for cos_theta_h = n.h (Walter et al. 2007, Eq. 33).
 float ggx_d(float cos_theta_h, float alpha);
 // Smith Lambda for GGX (Heitz 2014, "Understanding the Masking-Shadowing Function", Eq. 72).
@@ -98,7 +98,6 @@ float specular_lobe_probability(const SurfaceBsdf& m, const glm::vec3& n, const 
 float bsdf_pdf(const SurfaceBsdf& m, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi);
 BsdfSample bsdf_sample(const SurfaceBsdf& m, const glm::vec3& n, const glm::vec3& wo, float u_lobe, glm::vec2 u);
 
-// An orthonormal basis around n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
-void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b);
+// The tangent frame around n: orthonormal_basis, core/geometry.h.
 
 }  // namespace rtdr

@@ -6,14 +6,14 @@
 // One invocation per stratum.
 //   in:  binding 0 id.instance, 1 was_gradient, 2 (direct, indirect) luminance, per pixel of frame i-1;
 //   out: 3 the source pixel j per stratum, or RTDR_INVALID_ID. Layout: trace/gradient_select_shared.h.
-// Bit-identical to the golden function: the hash is integer arithmetic (trace/sampler.glsl), and the brightest
+// Bit-identical to the golden function: the hash is integer arithmetic (core/sampler.glsl), and the brightest
 // pixel compares the same fp32 sums (`precise`: one correctly rounded addition, as in C++).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 #include "filters/svgf/planes_shared.h"
 #include "trace/gradient_select_shared.h"
-#include "trace/sampler.glsl"
+#include "core/sampler.glsl"
 
 // The workgroup's shape, per device: the SVGF ports' (planes_shared.h), over the stratum grid.
 layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSizeYConstant,

@@ -21,7 +21,7 @@ namespace rtdr {
 #endif
 
 // Salts the selection's hash, so that a stratum's choice is independent of the pixel seeds made from the same
-// global seed (trace/sampler.h's pixel_seed): "ASVG" in ASCII.
+// global seed (core/sampler.h's pixel_seed): "ASVG" in ASCII.
 RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientSelectionSalt = 0x41535647u;
 
 // The number of bindings (0..3 above): 3 inputs (storage texel buffers, or storage buffers when built for storage

@@ -8,7 +8,7 @@
 #include "motion/forward_project.h"
 #include "trace/gradient_select_shared.h"
 #include "trace/render_key.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 
 #include "core/color.h"
 #include "trace/brdf.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include "motion/dual.h"
 #include "motion/glossy.h"
 #include "motion/shadow.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 #include "trace/shading.h"
 
 #include <chrono>

@@ -18,7 +18,7 @@
 // Random numbers. Sample j of a pixel with seed s is the point j of the sequence under the seed
 // hash_combine(s, kShadingStream), one 2D point of its first dimension pair: its first coordinate chooses the
 // light and, rescaled within that light's share, places the point with the second (LightSet::sample_reusing).
-// The path's numbers come from the seed s itself (trace/sampler.h), so the two sequences are independent,
+// The path's numbers come from the seed s itself (core/sampler.h), so the two sequences are independent,
 // and computing S changes no bit of any other layer. With M a power of 2 the M points form a (0, log2 M, 2)-net,
 // so a light whose share of the power is a power of 1/2 gets a net of its own: far smoother than M
 // independent points.
@@ -39,7 +39,7 @@
 #include "raster/surface.h"
 #include "trace/lights.h"
 #include "trace/path_tracer.h"
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <glm/glm.hpp>
 

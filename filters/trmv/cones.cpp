@@ -2,6 +2,8 @@
 // re-shading, the estimator and the choices: filters/trmv/cones.h.
 #include "filters/trmv/cones.h"
 
+#include "core/geometry.h"
+
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
@@ -29,17 +31,6 @@ double cap_beyond_great_circle(double theta, double gamma) {
   const double phi = std::acos(std::clamp(std::tan(gamma) / std::tan(theta), -1.0, 1.0));
   // Half of Omega = 4 (beta - phi cos theta_c) [TRMV21 Eq. 9]: one of the two equal halves of the lens.
   return 2.0 * (beta - phi * std::cos(theta));
-}
-
-// An orthonormal basis (t, b) around the unit vector n, right-handed (t x b = n), continuous everywhere but on
-// the seam n.z = 0 where the sign flips: Duff et al. 2017, Listing 3. copysign keeps n.z = -1 (where Frisvad's
-// original divides by zero) and -0 safe.
-void duff_basis(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
 // The six axes in the local frame: a_0 on the normal, a_1..a_5 on the ring at polar angle psi (cones.h).
@@ -147,7 +138,7 @@ ConeLayout make_cone_layout(float theta_c) {
 
 ConeAxes cone_axes(const ConeLayout& layout, glm::vec3 n) {
   glm::vec3 t, b;
-  duff_basis(n, t, b);
+  orthonormal_basis(n, t, b);  // core/geometry.h
   ConeAxes world{};
   // a_k in world space: its local coordinates on (t, b, n).
   for (int k = 0; k < kConeCount; ++k) {

@@ -89,8 +89,7 @@
 //   world axes from making neighbours touch.
 // - No source cone overlaps a target cone (normals far apart): the target cone takes the mean of the six source
 //   cones, the best guess with no directional evidence. A uniform field stays uniform either way.
-// - n must be unit length; the basis is Duff et al.'s, the same construction as trace/brdf.h's
-//   orthonormal_basis, written out again here because filters/ does not link trace/.
+// - n must be unit length; the basis is Duff et al.'s, core/geometry.h's orthonormal_basis, as the BSDF's.
 #pragma once
 
 #include <glm/glm.hpp>

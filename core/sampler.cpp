@@ -1,5 +1,5 @@
 // Hash-based Owen-scrambled Sobol' (0,2)-sequence (Burley 2020). See sampler.h.
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 namespace rtdr {
 namespace {
@@ -40,7 +40,7 @@ uint32_t sobol_dim1(uint32_t index) {
 
 // Laine-Karras style hash that only lets each bit be affected by the bits below it; applied to the
 // bit-reversed value it becomes a nested uniform (Owen) scramble (Burley 2020, Sec. 3 and Listing 2). Its
-// multipliers, and SamplePair's salts, are trace/sampler_shared.h's, shared with trace/sampler.glsl.
+// multipliers, and SamplePair's salts, are core/sampler_shared.h's, shared with core/sampler.glsl.
 uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
   x += seed;
   x ^= x * RTDR_LAINE_KARRAS_MULTIPLIER_1;

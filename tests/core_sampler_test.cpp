@@ -1,11 +1,11 @@
-// Tests for trace/sampler: the hash-based Owen-scrambled Sobol' (0,2)-sequence of Burley 2020 and the
+// Tests for core/sampler: the hash-based Owen-scrambled Sobol' (0,2)-sequence of Burley 2020 and the
 // per-pixel seeds. What a student should take away, in the order of the test cases:
 //   1. every value lies in [0, 1) and the sequence is a pure function of (seed, index);
 //   2. the first 2^k points of a dimension pair form a (0, k, 2)-net, for any seed and any pair;
 //   3. different seeds and different pairs give independent-looking numbers;
 //   4. pixel seeds do not collide between neighbouring pixels or frames;
 //   5. the payoff: on a smooth integrand the error is far below that of independent random points.
-#include "trace/sampler.h"
+#include "core/sampler.h"
 
 #include <catch2/catch.hpp>
 

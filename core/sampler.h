@@ -9,7 +9,7 @@
 // 0..N-1 under one seed and so gets a stratified, low-discrepancy set per pixel.
 #pragma once
 
-#include "trace/sampler_shared.h"
+#include "core/sampler_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -18,7 +18,7 @@
 namespace rtdr {
 
 // A well-mixing 32-bit integer hash (the "lowbias32" finalizer of C. Wellons' hash prospector). Its constants are
-// trace/sampler_shared.h's, shared with the GLSL mirror trace/sampler.glsl.
+// core/sampler_shared.h's, shared with the GLSL mirror core/sampler.glsl.
 inline uint32_t hash_u32(uint32_t x) {
   x ^= x >> 16;
   x *= RTDR_HASH_MULTIPLIER_1;

@@ -1,11 +1,11 @@
-// GLSL mirror of trace/sampler.h's integer hashes and of SamplePair (trace/sampler.cpp), for the render side's
-// Vulkan ports (#include "trace/sampler.glsl"; needs GL_GOOGLE_include_directive). Integer operations only, with
-// the constants of trace/sampler_shared.h: every result is the C++ one bit for bit (uint arithmetic wraps modulo
+// GLSL mirror of core/sampler.h's integer hashes and of SamplePair (core/sampler.cpp), for the render side's
+// Vulkan ports (#include "core/sampler.glsl"; needs GL_GOOGLE_include_directive). Integer operations only, with
+// the constants of core/sampler_shared.h: every result is the C++ one bit for bit (uint arithmetic wraps modulo
 // 2^32 in both), so a seed replays the same sample [ASVGF18 Sec. 3.2, Eq. 6].
 #ifndef RTDR_TRACE_SAMPLER_GLSL
 #define RTDR_TRACE_SAMPLER_GLSL
 
-#include "trace/sampler_shared.h"
+#include "core/sampler_shared.h"
 
 // A well-mixing 32-bit integer hash, the "lowbias32" finalizer (sampler.h's hash_u32).
 uint hash_u32(uint x) {

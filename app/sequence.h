@@ -29,7 +29,7 @@ std::string frame_name(int index, const char* ext);
 std::string frame_path(const std::string& dir, int index, const char* ext);
 
 // The size of a sequence and the file that set it: every frame must match the first. `first` holds no planes,
-// only the first frame's size and source, for core/exr_io.h's require_same_size.
+// only the first frame's size and source, for the size rule of sequence_input_problems.
 struct SequenceShape {
   Frame first;
 };

@@ -7,6 +7,7 @@
 //   - the memory of one frame's planes as written to EXR.
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "eval/run_memory.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -42,13 +43,6 @@ void cast_bare(const EmbreeScene& embree, const std::vector<std::vector<LoggedRa
         embree.intersect(r.ray, 0.0f, r.tfar);
     }
   });
-}
-
-size_t frame_bytes(const Frame& f) {
-  size_t bytes = 0;
-  for (const auto& [name, plane] : f.float_channels()) bytes += plane.data.size() * sizeof(float);
-  for (const auto& [name, plane] : f.uint_channels()) bytes += plane.data.size() * sizeof(uint32_t);
-  return bytes;
 }
 
 }  // namespace

@@ -216,7 +216,8 @@ Command add_eval_command(CLI::App& app) {
   sub->add_flag("--sweep", o->sweep,
                 "add the parameter sweeps: svgf's a-trous levels, alpha and 3x3 kernel; with asvgf, 2x2 and 4x4 strata");
   sub->add_option("--frames", o->frames, frames_help(""))->capture_default_str();
-  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT; refused when the run would not fit in the memory available")
+      ->capture_default_str();
   sub->add_option("--ref-spp", o->ref_spp, "samples per pixel of the reference frames")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   sub->add_option("--seed", o->seed, "seed of the 1-spp inputs (references use another)")->capture_default_str();

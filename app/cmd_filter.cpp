@@ -49,7 +49,7 @@ void run_filter(const FilterOptions& o) {
   if (o.method == "trmv") std::printf("%s", describe_params(trmv_param_table(), param_values(o.params.trmv)).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_method_input(f.path, method->inputs());
-    const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
+    const Frame filtered = about_frame(f, [&] { return o.dump ? filter_with_dump(*method, in) : method->filter(in); });
     require_finite_output(filtered, "frame " + std::to_string(f.index) + " of --in '" + o.in + "'", pass_writing);
     write_exr(out.file(frame_name(f.index, "exr")), filtered);
     write_display_png(out.file(frame_name(f.index, "png")), rgb_plane(filtered, "display"));
@@ -89,7 +89,8 @@ void run_probe(const ProbeOptions& o) {
   bool found = false;
   for (const SequenceFrame& f : all) {
     if (f.index > o.frame) break;
-    method->filter(read_filter_input(f.path, shape, method->inputs()), nullptr);
+    const Frame in = read_filter_input(f.path, shape, method->inputs());
+    about_frame(f, [&] { return method->filter(in, nullptr); });
     found = f.index == o.frame;
   }
   if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");

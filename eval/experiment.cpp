@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "eval/frame_cache.h"
 #include "eval/metrics.h"
+#include "eval/run_memory.h"
 #include "filters/method.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
@@ -218,7 +219,6 @@ EvalRenders eval_renders(const EvalConfig& c, const std::vector<const Method*>& 
 EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   check_eval_config(c);
   const Scene scene = load_scene(c.scene);
-  FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
   std::vector<const Method*> made;
   for (const MethodSpec& spec : c.methods) {
@@ -240,6 +240,13 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   std::vector<RgbPlane> ref_position;
   const TonemapParams tonemap_params;
   const bool gradients = !renders.gradient_inputs.empty();
+  // What the run will hold, against the memory there is (run_memory.h), before anything is rendered or cached.
+  uint64_t most_method_planes = 0;
+  for (const std::unique_ptr<Method>& m : methods) most_method_planes = std::max(most_method_planes, method_planes(*m));
+  require_run_fits("eval", c.width, c.height,
+                   eval_planes(rendered_frame_planes(scene, renders.input, gradients), frames, most_method_planes),
+                   memory_budget());
+  FrameCache cache(c.cache_dir, scene);
   if (gradients)
     inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, renders.input,
                                    renders.gradient_inputs.front());

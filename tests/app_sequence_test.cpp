@@ -1,4 +1,4 @@
-// A frame that lacks a layer `rtdr render` writes only when asked (app/sequence.cpp missing_layers, filters/method.h
+// A frame that lacks a layer `rtdr render` writes only when asked (filters/input_check.cpp missing_layers, filters/method.h
 // missing_layer_fix): the error of every command that reads it names the layer and the flag that writes it, the same
 // words in rtdr filter, probe and check. Runs the real binary (RTDR_EXE) on 2 frames rendered at 24x14 without the
 // gradient samples and without the shading term; the control renders them with the flags the errors name.

@@ -3,6 +3,7 @@
 #include "filters/svgf/svgf.h"
 
 #include "core/error.h"
+#include "filters/input_check.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/prefilter.h"
 #include "filters/svgf/variance.h"
@@ -177,6 +178,10 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
     // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
     stratum_size_ = frame_stratum_size(in, options_.name);
     gradient_source_ = in.uint_channel("gradient.source");
+    // At most one sample per stratum (filters/input_check.h, the rule rtdr check applies), named with the frame.
+    if (const std::vector<std::string> crowded = gradient_strata_problems(gradient_source_, stratum_size_);
+        !crowded.empty())
+      throw Error((in.source.empty() ? std::string("the input frame") : in.source) + ": " + crowded.front());
     direct_.prev_luminance = in.float_channel("gradient.prev_direct");
     indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");
   }

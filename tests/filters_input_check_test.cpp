@@ -50,7 +50,8 @@ TEST_CASE("input check: each rule on a rendered frame, one line each, without th
   CHECK(input_problems(no_ids, asvgf) ==
         std::vector<std::string>{"channel 'normal.Y' holds NaN or infinity at 1 pixels, the first at (1, 1): -Inf",
                                  "channel 'id.mesh' is stored as float, but the method reads it as uint",
-                                 "layer 'gradient' lacks gradient.source",
+                                 "layer 'gradient' lacks gradient.source: render the frames with `rtdr render --gradients` "
+                                 "(A-SVGF's gradient samples)",
                                  "rtdr.gradient.stratum_size '65' is not a stratum size (1 to 64)"});
   // svgf reads none of the gradient samples: their header is none of its business.
   CHECK(input_problems(bad, make_method("svgf")->inputs()).size() == 1);

@@ -63,6 +63,10 @@ constexpr const char* kTrmv = "trmv";
 
 }  // namespace
 
+Probe Method::probe(const std::string& pass, int x, int y, const std::string& stream, int level) const {
+  return log_.probe(pass, stream, level, x, y);
+}
+
 double Method::time_pass(const std::string& pass, const std::function<void()>& run) {
   const auto start = std::chrono::steady_clock::now();
   run();

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "core/frame.h"
+#include "filters/pass_log.h"
 #include "filters/probe.h"
 #include "filters/asvgf/asvgf_params.h"
 #include "filters/baselines/eaw.h"
@@ -61,13 +62,17 @@ class Method {
   virtual ~Method() = default;
   virtual std::string name() const = 0;
   // Filters the next frame of the sequence. When `dump` is given, every intermediate buffer is added to it
-  // as the layers its passes declare (filters/passes.h, docs/buffers.md "Filter passes").
+  // as the layers its passes declare (filters/passes.h, docs/buffers.md "Filter passes"): what the frame's pass
+  // log holds (passes()).
   virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
   // Forgets all history (the next frame is treated as the first).
   virtual void reset() = 0;
   // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
-  // probe attached. `stream` is "direct" or "indirect" for per-stream passes, `level` the a-trous level.
-  virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
+  // probe attached. `stream` is the stream or component for per-stream passes, `level` the level. By default
+  // the pass log's (filters/pass_log.h); a back end that logs no golden function says so instead.
+  virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const;
+  // What the last frame's passes did, in order: their layers and their golden per-pixel functions.
+  const PassLog& passes() const { return log_; }
   // The passes probe() accepts: those the method runs, in order (filters/passes.h declares each).
   virtual std::vector<std::string> probe_passes() const = 0;
   // Every channel filter() reads from its input frame.
@@ -83,7 +88,14 @@ class Method {
  protected:
   // Runs `run` and adds its wall time to times_[pass]; returns the milliseconds.
   double time_pass(const std::string& pass, const std::function<void()>& run);
+  // Logs a run of the pass declared as `name` (filters/passes.h) on `stream` at `level`, for its layers and its
+  // probe (filters/pass_log.h). filter() starts each frame's log with log_.begin and ends it with
+  // `if (dump) log_.dump(*dump)`.
+  PassRun& log_pass(std::string_view name, std::string_view stream = {}, int level = -1) {
+    return log_.add(find_pass(name), stream, level);
+  }
   PassTimes times_;
+  PassLog log_;
 };
 
 // "svgf" (the pipeline of [SVGF17 Sec. 3]), "accum" (its temporal accumulation only, [SVGF17 Sec. 4.1]), "eaw"

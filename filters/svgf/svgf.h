@@ -25,6 +25,7 @@
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
 
+#include <deque>
 #include <optional>
 
 namespace rtdr {
@@ -53,7 +54,7 @@ struct SvgfOptions {
 InputChannels svgf_input_channels(const SvgfOptions& options);
 // The passes a filter with `options` runs, in order (declared in filters/passes.h), and every channel its
 // dump holds: each pass's dump layers for both streams and every level it runs.
-std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options);
+std::vector<PassUse> svgf_passes(const SvgfOptions& options);
 std::vector<std::string> svgf_dump_channels(const SvgfOptions& options);
 
 class SvgfFilter : public Method {
@@ -62,7 +63,6 @@ class SvgfFilter : public Method {
   std::string name() const override { return options_.name; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
-  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
@@ -74,7 +74,7 @@ class SvgfFilter : public Method {
     RgbPlane noisy;                   // this frame's input
     FloatPlane prev_luminance;        // A-SVGF: gradient.prev_<stream>, the previous frame's luminance at j
     GradientImage gradient;           // A-SVGF: the gradient image
-    std::vector<GradientValues> gradient_levels;  // each reconstruction iteration's output
+    std::deque<GradientValues> gradient_levels;  // each reconstruction iteration's output
     AdaptiveAlpha adaptive;           // lambda and alpha_i
     TemporalHistory ema_history, seen_ema_history;  // ema_after_spatial: the EMA's history, and what it read
     TemporalOutput ema;               // and its output
@@ -82,8 +82,10 @@ class SvgfFilter : public Method {
     TemporalHistory seen_history;     // the history the temporal pass read this frame
     TemporalOutput temporal;          // its output
     FloatPlane variance;              // the variance estimate
-    std::vector<AtrousOutput> levels;         // each a-trous level's output (prefiltered variance included)
-    std::vector<RgbPlane> eaw_levels;         // or each EAW level's output
+    // Each a-trous level's output (prefiltered variance included), or each EAW level's output. Deques, whose
+    // elements stay where they are as levels are added: the pass log points at them (filters/pass_log.h).
+    std::deque<AtrousOutput> levels;
+    std::deque<RgbPlane> eaw_levels;
     // The input of level i is the output of level i - 1; level 0 reads the temporal output.
     const RgbPlane& level_input_color(int level) const;
     const FloatPlane& level_input_variance(int level) const;
@@ -91,13 +93,12 @@ class SvgfFilter : public Method {
     const RgbPlane& filtered() const;        // the stream's result: the EMA's output, else spatial_result()
   };
 
-  // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
-  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name);
+  // Runs one stream's passes and logs them; `name` is the stream, "direct" or "indirect", for the layer names.
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, const std::string& name);
   // A-SVGF's gradient passes of one stream [ASVGF18 Sec. 3.4, 3.5].
-  void adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name);
+  void adaptive_alpha_stream(Stream& s, const std::string& name);
   // What the temporal pass of stream `s` reads of A-SVGF (null without it).
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
-  const Stream& stream(const std::string& name) const;
 
   SvgfOptions options_;
   Stream direct_, indirect_;

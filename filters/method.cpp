@@ -122,7 +122,7 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     options.taa_params = params.taa;
     return options;
   }
-  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines and has no Vulkan port yet");
+  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines (its ports: gpu/trmv_vulkan.h)");
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);

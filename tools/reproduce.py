@@ -3,17 +3,17 @@
 
 Usage (from the repository root, with Debian's Python):
   tools/reproduce.py NAME...         run each experiment's commands (rtdr eval, rtdr bench, ctest), keep its
-                                     results in eval/results/NAME.csv and rewrite its tables in their READMEs
+                                     results in eval/results/<name>.csv and rewrite its tables in their READMEs
   tools/reproduce.py --list          the experiments, what each costs and where its tables are
   tools/reproduce.py --check         every marked table is exactly what its kept CSV makes (renders nothing)
   tools/reproduce.py --from-csv NAME DIR   a GPU experiment: its tables from the CSVs tools/gpu_device.sh wrote
-Options: --build DIR (default build: rtdr and the stability test), --cache DIR (rtdr eval's frame cache, default
-out/cache; share one between worktrees), --threads N (rtdr --threads), --experiments FILE and --root DIR (another
-declaration and the folder its READMEs are in; the tests use them).
+Options: --build DIR (default build: rtdr and the stability test), --cache DIR (the frame cache of the
+evaluations, default out/cache; share one between worktrees), --threads N (passed on), --experiments FILE and
+--root DIR (another declaration and the folder its READMEs are in; the tests use them).
 
 A table lives in its README between `<!-- experiment: MARKER -->` and `<!-- /experiment -->`: the commands that
 made it, the table, and a footer with the command, the date, the commit and the machine's core count. Nothing
-between the markers is typed by hand. A table whose experiment has no kept CSV yet keeps its hand-typed values
+between the markers is typed by hand. A table whose experiment has no kept CSV keeps its hand-typed values
 under a footer that says so ("Last hand-typed values ..., pending a run"). How cells are declared:
 tools/reproduce_tables.py.
 
@@ -250,8 +250,11 @@ def markdown_files(root):
                             capture_output=True, text=True)
     if listed.returncode == 0 and listed.stdout:
         return [f for f in listed.stdout.split("\n") if f and os.path.exists(os.path.join(root, f))]
-    return [os.path.relpath(os.path.join(d, n), root) for d, _, names in os.walk(root) for n in names
-            if n.endswith(".md") and not os.path.relpath(d, root).startswith(("build", "out", "."))]
+    found = []
+    for folder, subfolders, names in os.walk(root):  # not a git checkout: all but build trees and outputs
+        subfolders[:] = [d for d in subfolders if not d.startswith(("build", "out", "."))]
+        found += [os.path.relpath(os.path.join(folder, n), root) for n in names if n.endswith(".md")]
+    return found
 
 
 def check(experiments, root):
@@ -286,7 +289,8 @@ def check(experiments, root):
                 if not match or match.group("command") != e.footer_command():
                     problems.append(f"{t.readme}: {t.marker} has no kept CSV ({os.path.relpath(e.results, root)}) "
                                     "and no 'Last hand-typed values ..., pending a run' footer")
-                pending.append(t.marker)
+                else:
+                    pending.append(t.marker)
                 continue
             try:
                 wanted = tables.block(t, kept[0], recs)

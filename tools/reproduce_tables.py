@@ -2,7 +2,7 @@
 README blocks those make. tools/reproduce.py runs the commands; everything here is pure: it reads files and
 returns text, so `tools/reproduce.py --check` can recompute every table without rendering anything.
 
-A kept CSV (eval/results/NAME.csv) starts with one comment line, the run's facts (date, commit, cores), then:
+A kept CSV (eval/results/<name>.csv) starts with one comment line, the run's facts (date, commit, cores), then:
   eval:  run,method,spec,frame,<the metrics the tables read>   one row per run, method and frame (metrics.csv)
   bench: run,scene,metric,value                                rtdr bench --csv, the filter stage's metrics
                                                                prefixed by their back end (cpu_ms_temporal)
@@ -11,7 +11,8 @@ A kept CSV (eval/results/NAME.csv) starts with one comment line, the run's facts
 A table cell is a template: text with fields in braces. `{label}` is the row's own text (any key of the row
 but its selectors), or `{frames}`, `{scene}`, `{spec}`: its run's frames and scene, its method's spec.
 `{rmse:.4f}` is a metric, the mean over the row's records (NaN and empty values skipped): `{rmse@asvgf}`
-selects the method, run or scene named after the @ instead of the row's. A field may be arithmetic on
+selects the method, run or scene named after the @ instead of the row's, `{rmse@40}` frame 40 and
+`{rmse@51_60}` frames 51-60 instead of the row's `mean_over`. A field may be arithmetic on
 metrics and numbers, `{rmse@asvgf / rmse@svgf - 1:+.0%}`. A cell with a field that has no value is "-".
 """
 import ast
@@ -99,7 +100,7 @@ class Experiment:
         return sorted({name for t in self.tables for name in t.metric_names()})
 
     def commands(self):
-        """Each run's command as shown in the README: what decides the numbers, without --cache, --out, --csv."""
+        """Each run's command as shown in the README: what decides the numbers, without the output paths."""
         if self.tool == "ctest":
             return ["ctest -L stability -V"]
         return [" ".join(r.get("env", []) + ["rtdr"] + self.rtdr_args(r)) for r in self.runs]
@@ -187,6 +188,10 @@ class Table:
         def term(match):
             metric, chosen = match.group(1), {}
             for name in match.group(2).split("@")[1:]:
+                frames = re.fullmatch(r"(\d+)(?:_(\d+))?", name)  # @40: frame 40; @51_60: frames 51-60
+                if frames:
+                    chosen["frames"] = f"{frames.group(1)}-{frames.group(2) or frames.group(1)}"
+                    continue
                 keys = [k for k in SELECTORS if name in self.names(k)]
                 if len(keys) != 1:
                     raise DeclarationError(f"table {self.marker}: '@{name}' names no run, method or scene"
@@ -367,7 +372,7 @@ def mean_of(table, recs, row, metric, chosen):
     """The mean of `metric` over the records the row (with `chosen` overriding its selectors) picks."""
     selection = {k: row[k] for k in SELECTORS if k in row}
     selection.update(chosen)
-    frames = row.get("mean_over", table.mean_over)
+    frames = selection.pop("frames", None) or row.get("mean_over", table.mean_over)
     first, last = frame_range(frames) if frames else (-1, 1 << 30)
     picked = [r for r in recs if all(r.get(k) == v for k, v in selection.items())
               and first <= r.get("frame", first) <= last]

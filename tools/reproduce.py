@@ -15,7 +15,7 @@ A table lives in its README between `<!-- experiment: MARKER -->` and `<!-- /exp
 made it, the table, and a footer with the command, the date, the commit and the machine's core count. Nothing
 between the markers is typed by hand. A table whose experiment has no kept CSV keeps its hand-typed values
 under a footer that says so ("Last hand-typed values ..., pending a run"). How cells are declared:
-tools/reproduce_tables.py.
+tools/reproduce_declarations.py; how the tables are made from the kept CSVs: tools/reproduce_tables.py.
 
 Every command runs as an argument vector, never through a shell. `rtdr eval` reuses the frame cache, so a rerun
 with the same seed only filters: its table comes back identical but for the timing columns
@@ -32,7 +32,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import reproduce_tables as tables  # noqa: E402  (beside this script)
+import reproduce_declarations as declarations  # noqa: E402  (both beside this script)
+import reproduce_tables as tables  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STABILITY_LINE = re.compile(r"stability: (?P<claim>.+): (?P<value>[^\s:]+)(?: \(threshold (?P<threshold>[^)]*)\))?$")
@@ -68,7 +69,7 @@ def run_seconds(experiment, run, calibration):
     if experiment.tool != "eval":  # ctest has no runs: its one command takes `seconds`
         return float(experiment.seconds or 0.0) / max(1, len(experiment.runs))
     w, h = (int(v) for v in experiment.size.split("x"))
-    first, last = tables.frame_range(run["frames"])
+    first, last = declarations.frame_range(run["frames"])
     frames = last - first + 1
     gradients = "--gradients" in experiment.flags or any(s.startswith("asvgf") or "gradient_" in s
                                                          for s in experiment.methods.values())
@@ -88,7 +89,7 @@ def samples(experiment):
     if experiment.tool != "eval":
         return 0
     w, h = (int(v) for v in experiment.size.split("x"))
-    return sum(w * h * experiment.ref_spp * (tables.frame_range(r["frames"])[1] - tables.frame_range(r["frames"])[0]
+    return sum(w * h * experiment.ref_spp * (declarations.frame_range(r["frames"])[1] - declarations.frame_range(r["frames"])[0]
                                              + 1) for r in experiment.runs)
 
 
@@ -129,7 +130,7 @@ def run_eval(experiment, run, rtdr, options, out_dir):
                      "(write specs as rtdr writes them back)")
             rows[(by_spec[spec], int(r["frame"]))] = [run["id"], by_spec[spec], spec, r["frame"]] + [
                 r.get(m, "") for m in metrics]
-    first, last = tables.frame_range(run["frames"])
+    first, last = declarations.frame_range(run["frames"])
     return [rows[(alias, frame)] for alias in experiment.methods for frame in range(first, last + 1)]
 
 
@@ -265,7 +266,7 @@ def check(experiments, root):
         with open(os.path.join(root, md), encoding="utf-8") as f:
             try:
                 found = tables.find_blocks(f.read())
-            except tables.DeclarationError as error:
+            except declarations.DeclarationError as error:
                 problems.append(f"{md}: {error}")
                 continue
         problems += [f"{md}: marker {m} is declared by no experiment" for m in found if m not in declared]
@@ -275,7 +276,7 @@ def check(experiments, root):
         try:
             kept = tables.read_kept(e)
             recs = tables.records(e, kept[1], kept[2]) if kept else None
-        except tables.DeclarationError as error:
+        except declarations.DeclarationError as error:
             problems.append(str(error))
             continue
         for t in e.tables:
@@ -294,7 +295,7 @@ def check(experiments, root):
                 continue
             try:
                 wanted = tables.block(t, kept[0], recs)
-            except tables.DeclarationError as error:
+            except declarations.DeclarationError as error:
                 problems.append(str(error))
                 continue
             if found == wanted:
@@ -330,7 +331,7 @@ def main():
     options = parser.parse_args()
     options.rtdr_prefix = ["--threads", str(options.threads)] if options.threads is not None else []
     try:
-        experiments, calibration = tables.load(options.experiments)
+        experiments, calibration = declarations.load(options.experiments)
         if options.list:
             list_experiments(experiments, calibration)
             return 0
@@ -346,7 +347,7 @@ def main():
             return 0
         for name in options.names:
             reproduce(experiments[name], calibration, options)
-    except tables.DeclarationError as error:
+    except declarations.DeclarationError as error:
         fail(str(error))
     except subprocess.CalledProcessError as error:
         fail(f"{os.path.basename(error.cmd[0])} failed (exit {error.returncode}): nothing was written")

@@ -77,7 +77,8 @@ def run_seconds(experiment, run, calibration):
     input_frames = (last + 1 if gradients else frames) * inputs
     shading = any(s.startswith("trmv") for s in experiment.methods.values())
     filter_us = calibration.get("filter_pixel_us", {})
-    us = (w * h * experiment.ref_spp * frames * calibration.get("reference_sample_us", 1.0)
+    us = (1e6 * calibration.get("run_overhead_s", 0.0)
+          + w * h * experiment.ref_spp * frames * calibration.get("reference_sample_us", 1.0)
           + w * h * input_frames * calibration.get("shading_pixel_us" if shading else "input_pixel_us", 1.0)
           + sum(w * h * frames * filter_us.get(s.split(":")[0], filter_us.get("svgf", 1.0))
                 for s in experiment.methods.values()))

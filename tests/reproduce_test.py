@@ -3,13 +3,16 @@
 
 Usage: reproduce_test.py SOURCE_DIR BUILD_DIR
 
-tests/data/reproduce holds a declaration of one experiment, `tiny` (pillars at 48x27, 4 frames, svgf, asvgf, the
-3x3 box and the input against 4-spp references), and a README with its markers. In a temporary copy this test:
+tests/data/reproduce holds a declaration of two experiments, `tiny` (pillars at 48x27, 4 frames, svgf, asvgf, the
+3x3 box and the input against 4-spp references) and `tiny-gpu` (a GPU experiment, whose CSV device/ holds as
+tools/gpu_device.sh would bring it back), and a README with their markers. In a temporary copy this test:
   1. runs it, with an empty frame cache, and checks the table against the kept CSV: --check passes, and one cell
      recomputed here from the CSV (svgf's mean RMSE over frames 1-3) is the table's;
   2. runs it again on one thread, with the references from the cache, as a new user would: every cell but the
      timing column, and every value of the kept CSV but the times, comes back identical;
-  3. breaks the README and the CSV in the ways --check must catch (a cell, the footer, a row of the CSV, a
+  3. writes `tiny-gpu` from its device CSV (--from-csv): the cells are the CSV's values, the footer names the
+     GPU from info.txt and the device's threads, and --check passes;
+  4. breaks the README and the CSV in the ways --check must catch (a cell, the footer, a row of the CSV, a
      stray marker), and a declaration with a misspelt key, each of which must fail.
 Prints what failed and exits 1.
 """
@@ -34,12 +37,15 @@ def reproduce(tmp, *args):
                            os.path.join(tmp, "cache")] + list(args), capture_output=True, text=True)
 
 
-def table_rows(readme):
-    """The table's rows between the markers, each a list of cells."""
+def block_lines(readme, marker):
     text = open(readme, encoding="utf-8").read()
-    block = text.split("<!-- experiment: tiny -->")[1].split("<!-- /experiment -->")[0]
-    return [[c.strip() for c in line.strip("|").split("|")] for line in block.split("\n")
-            if line.startswith("| ") and not line.startswith("| method")]
+    return text.split(f"<!-- experiment: {marker} -->\n")[1].split("<!-- /experiment -->")[0].split("\n")
+
+
+def table_rows(readme, marker="tiny"):
+    """The table's rows between the markers, each a list of cells, without the header."""
+    lines = [line for line in block_lines(readme, marker) if line.startswith("| ")][1:]
+    return [[c.strip() for c in line.strip("|").split("|")] for line in lines]
 
 
 def csv_lines(tmp):
@@ -102,6 +108,17 @@ def main():
                    f"a rerun gives the same cells but the times: {a} against {b}")
         expect(without_times(csv_first) == without_times(csv_lines(tmp)),
                "a rerun keeps the same values in the CSV but the times")
+
+        device = reproduce(tmp, "--from-csv", os.path.join(SOURCE, "tests", "data", "reproduce", "device"), "tiny-gpu")
+        expect(device.returncode == 0, f"--from-csv writes the GPU experiment: {device.stderr[-500:]}")
+        expect(table_rows(readme, "tiny-gpu") == [["temporal", "0.136 ms"], ["atrous", "1.007 ms"],
+                                                   ["total", "1.340 ms"]],
+               f"the GPU table holds the device CSV's values: {table_rows(readme, 'tiny-gpu')}")
+        footer = [line for line in block_lines(readme, "tiny-gpu") if line.startswith("Made by")]
+        expect(len(footer) == 1 and footer[0].startswith("Made by `bash tools/gpu_device.sh targets` on NVIDIA H100 "
+                                                         "80GB HBM3, ") and "16 cores." in footer[0],
+               f"the GPU table's footer names the step, the GPU and its cores: {footer}")
+        expect(reproduce(tmp, "--check").returncode == 0, "--check passes with the GPU table written")
 
         check_fails(tmp, "a changed cell", "README.md", rows_second[1][2], rows_second[1][2] + "1")
         check_fails(tmp, "a changed footer", "README.md", "Made by `tools/reproduce.py tiny`",

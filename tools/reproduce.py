@@ -46,7 +46,8 @@ def fail(message):
 # ---- The machine's facts -----------------------------------------------------------------------------------
 
 def commit_of(root):
-    """The short commit of `root`, with "+changes" when files other than docs and kept results differ from it."""
+    """The short commit of `root`, with "+changes" when a file differs from it that is not a doc (*.md), the
+    declaration or a kept result."""
     head = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
     if head.returncode != 0:
         return "none"
@@ -90,8 +91,8 @@ def samples(experiment):
     if experiment.tool != "eval":
         return 0
     w, h = (int(v) for v in experiment.size.split("x"))
-    return sum(w * h * experiment.ref_spp * (declarations.frame_range(r["frames"])[1] - declarations.frame_range(r["frames"])[0]
-                                             + 1) for r in experiment.runs)
+    ranges = [declarations.frame_range(r["frames"]) for r in experiment.runs]
+    return sum(w * h * experiment.ref_spp * (last - first + 1) for first, last in ranges)
 
 
 def duration(seconds):

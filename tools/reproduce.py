@@ -260,11 +260,15 @@ def markdown_files(root):
     return found
 
 
-def check(experiments, root):
-    """Every marked table against what its kept CSV makes; every marker declared; no stray kept CSV."""
+def check(experiments, root, declaration):
+    """Every marked table against what its kept CSV makes; every marker declared; no stray kept CSV. A folder with
+    a declaration of its own (tests/data/reproduce/experiments.toml) is that declaration's, and is left out."""
     problems, checked, pending = [], 0, []
     declared = {t.marker: t for e in experiments.values() for t in e.tables}
     for md in markdown_files(root):
+        other = os.path.join(root, os.path.dirname(md), "experiments.toml")
+        if os.path.exists(other) and not os.path.samefile(other, declaration):
+            continue
         with open(os.path.join(root, md), encoding="utf-8") as f:
             try:
                 found = tables.find_blocks(f.read())
@@ -338,7 +342,7 @@ def main():
             list_experiments(experiments, calibration)
             return 0
         if options.check:
-            return check(experiments, options.root)
+            return check(experiments, options.root, options.experiments)
         unknown = [n for n in options.names if n not in experiments]
         if unknown or not options.names:
             fail(f"no experiment {', '.join(unknown)}" if unknown else "name an experiment (--list shows them)")

@@ -44,9 +44,7 @@ void run_filter(const FilterOptions& o) {
 
   std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
-              o.method == "none" ? "" : describe(o.params.svgf).c_str());
-  if (o.method == "asvgf") std::printf("%s", describe_params(asvgf_param_table(), param_values(o.params.asvgf)).c_str());
-  if (o.method == "trmv") std::printf("%s", describe_params(trmv_param_table(), param_values(o.params.trmv)).c_str());
+              describe_method_params(o.method, o.params).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_method_input(f.path, method->inputs());
     const Frame filtered = about_frame(f, [&] { return o.dump ? filter_with_dump(*method, in) : method->filter(in); });

@@ -95,6 +95,16 @@ bool set_gradient_row(MethodSpec& spec, const std::string& key, double value) {
   return true;
 }
 
+// A key of a table the spec's method reads, its own first (filters/method.h set_method_param). False for any other.
+bool set_spec_param(MethodSpec& spec, const std::string& key, double value) {
+  MethodParams params = spec_params(spec);
+  if (!set_method_param(spec.name, params, key, value)) return false;
+  spec.svgf = params.svgf;
+  spec.asvgf = params.asvgf;
+  spec.trmv = params.trmv;
+  return true;
+}
+
 }  // namespace
 
 MethodSpec parse_method_spec(const std::string& text) {
@@ -122,9 +132,7 @@ MethodSpec parse_method_spec(const std::string& text) {
     } else if (key == "motion" && trmv_motion_from_name(value_text) >= 0) {
       spec.trmv.motion = trmv_motion_from_name(value_text);  // trmv_params.h's motion row, by name
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
-               !((spec.name == "trmv" && set_param(spec.trmv, key, value)) || set_param(spec.svgf, key, value) ||
-                 set_param(spec.asvgf, key, value) || set_param(spec.trmv, key, value) ||
-                 set_gradient_row(spec, key, value))) {
+               !(set_spec_param(spec, key, value) || set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
                   "' is not parameter=value of svgf_params.h, asvgf_params.h, trmv_params.h or gradient_<row> of "
                   "trace/gradients.h, motion=traditional|shadow|dual|glossy|all, backend=cpu|vulkan or illumination=fp32|fp16");

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "filters/svgf/svgf.h"
+#include "filters/params.h"
 #include "filters/trmv/trmv.h"
 
 #include <algorithm>
@@ -23,10 +24,16 @@ SvgfOptions stages(const char* name, bool temporal, SpatialFilter spatial, bool 
   return o;
 }
 
+// One method: its name, and either the stages of SVGF's pipeline it runs (`options`; SvgfFilter runs them) or its
+// own class (`make`). `defaults` is where it departs from the tables' defaults; `own_params` sets a key of the table
+// it reads before SVGF's, for the names both have (trmv's alpha is TRMV's, not SVGF's).
 struct MethodEntry {
   const char* name;
   std::function<SvgfOptions()> options;
-  std::function<void(MethodParams&)> defaults = [](MethodParams&) {};  // where the method departs from the tables
+  std::function<void(MethodParams&)> defaults = [](MethodParams&) {};
+  std::function<std::unique_ptr<Method>(const MethodParams&)> make = nullptr;
+  std::function<bool(MethodParams&, const std::string&, double)> own_params = nullptr;
+  std::function<std::string(const MethodParams&)> describe = nullptr;
 };
 
 // A-SVGF's choices where they differ from SVGF's.
@@ -54,12 +61,23 @@ const std::vector<MethodEntry>& registry() {
       {"eaw", [] { return stages("eaw", false, SpatialFilter::Eaw); }},
       {"eaw-accum", [] { return stages("eaw-accum", true, SpatialFilter::Eaw); }},
       {"none", [] { return stages("none", false, SpatialFilter::None, false); }},
+      // TRMV is not one of SVGF's pipelines: its own class (filters/trmv/trmv.h).
+      {"trmv", nullptr, [](MethodParams&) {},
+       [](const MethodParams& p) -> std::unique_ptr<Method> { return std::make_unique<TrmvFilter>(p); },
+       [](MethodParams& p, const std::string& key, double value) { return set_param(p.trmv, key, value); },
+       [](const MethodParams& p) { return describe_params(trmv_param_table(), param_values(p.trmv)); }},
   };
   return methods;
 }
 
-// TRMV is not one of SVGF's pipelines: its own class (filters/trmv/trmv.h), after the registry's methods.
-constexpr const char* kTrmv = "trmv";
+// The registry's entry of method `name`; throws rtdr::Error listing the known names when there is none.
+const MethodEntry& find_method(const std::string& name) {
+  for (const MethodEntry& m : registry())
+    if (name == m.name) return m;
+  std::string known;
+  for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("--method '" + name + "' is not one of: " + known);
+}
 
 }  // namespace
 
@@ -119,41 +137,50 @@ bool Method::reads_shading_term() const {
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
   for (const MethodEntry& m : registry()) names.push_back(m.name);
-  names.push_back(kTrmv);
   return names;
 }
 
+bool is_svgf_pipeline(const std::string& name) { return bool(find_method(name).options); }
+
 SvgfOptions method_options(const std::string& name, const MethodParams& params) {
-  for (const MethodEntry& m : registry()) {
-    if (name != m.name) continue;
-    SvgfOptions options = m.options();
-    options.svgf = params.svgf;
-    options.asvgf = params.asvgf;
-    options.eaw = params.eaw;
-    options.tonemap = params.tonemap;
-    options.taa_params = params.taa;
-    return options;
-  }
-  if (name == kTrmv)
-    throw Error("method trmv is not one of SVGF's pipelines (its golden passes: filters/trmv/trmv.h, its ports: "
-                "gpu/trmv_vulkan.h)");
-  std::string known;
-  for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
-  throw Error("--method '" + name + "' is not one of: " + known);
+  const MethodEntry& m = find_method(name);
+  if (!m.options) throw Error("method " + name + " is not one of SVGF's pipelines: it has a class of its own");
+  SvgfOptions options = m.options();
+  options.svgf = params.svgf;
+  options.asvgf = params.asvgf;
+  options.eaw = params.eaw;
+  options.tonemap = params.tonemap;
+  options.taa_params = params.taa;
+  return options;
 }
 
 MethodParams method_defaults(const std::string& name) {
-  if (name != kTrmv) method_options(name, {});  // throws for an unknown name, listing the known ones
   MethodParams params;
-  for (const MethodEntry& m : registry())
-    if (name == m.name) m.defaults(params);
+  find_method(name).defaults(params);
   return params;
+}
+
+bool set_method_param(const std::string& name, MethodParams& params, const std::string& key, double value) {
+  const MethodEntry& m = find_method(name);
+  return (m.own_params && m.own_params(params, key, value)) || set_param(params.svgf, key, value) ||
+         set_param(params.asvgf, key, value) || set_param(params.trmv, key, value);
+}
+
+std::string describe_method_params(const std::string& name, const MethodParams& params) {
+  const MethodEntry& m = find_method(name);
+  if (m.describe) return m.describe(params);
+  // SVGF's pipelines: SVGF's table where a temporal or spatial stage runs, and A-SVGF's where it adapts alpha.
+  const SvgfOptions options = m.options();
+  std::string text = options.temporal || options.spatial != SpatialFilter::None ? describe(params.svgf) : "";
+  if (options.adaptive) text += describe_params(asvgf_param_table(), param_values(params.asvgf));
+  return text;
 }
 
 std::unique_ptr<Method> make_method(const std::string& name) { return make_method(name, method_defaults(name)); }
 
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params) {
-  if (name == kTrmv) return std::make_unique<TrmvFilter>(params);
+  const MethodEntry& m = find_method(name);
+  if (m.make) return m.make(params);
   return std::make_unique<SvgfFilter>(method_options(name, params));
 }
 

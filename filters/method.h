@@ -124,10 +124,20 @@ MethodParams method_defaults(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
-// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines: its
-// golden passes are TrmvFilter's (filters/trmv/trmv.h), its Vulkan ports TrmvVulkan's (gpu/trmv_vulkan.h).
+// method, gpu/svgf_vulkan.h). Throws like make_method(), and for a method with a class of its own (trmv: its golden
+// passes are TrmvFilter's, filters/trmv/trmv.h, its Vulkan ports TrmvVulkan's, gpu/trmv_vulkan.h).
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
+// The registry's names (filters/method.cpp), in its order.
 std::vector<std::string> method_names();
+// Whether method `name` is one of SVGF's pipelines (method_options gives its stages), rather than a class of its own.
+// Throws for an unknown name.
+bool is_svgf_pipeline(const std::string& name);
+// Sets parameter `key` of the tables method `name` reads: its own table first where it has one (trmv:alpha is
+// TRMV's alpha), then SVGF's, A-SVGF's and TRMV's. False when no table has the key; throws rtdr::Error, with the
+// range, for a value outside it.
+bool set_method_param(const std::string& name, MethodParams& params, const std::string& key, double value);
+// The parameters method `name` reads, one "name = value" line each, as `rtdr filter` prints them.
+std::string describe_method_params(const std::string& name, const MethodParams& params);
 
 }  // namespace rtdr

@@ -20,5 +20,16 @@ cmake --build build-asan
 # The tests that run `rtdr` run the sanitized one of this build (RTDR_EXE), which inherits these options; a
 # report in its stderr fails the test (tests/cli_fixtures.h). detect_leaks=1 is ASan's default, written out.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1"
+# lavapipe, the CPU Vulkan driver the tests run the ports on, allocates 128 bytes when an instance is made, and the
+# Vulkan loader unloads it at vkDestroyInstance with them still allocated: LeakSanitizer then reports a direct leak
+# "from <unknown module>" in every process that used Vulkan (mesa 22.3.6-1+deb12u2, Debian 12; a five-line program
+# that makes and destroys an instance shows it). Preloaded, the driver stays loaded, its memory stays reachable and
+# is not a leak; a leak of ours is still reported. The driver comes before the sanitizer runtime in the library list
+# then, which ASan accepts with verify_asan_link_order=0.
+lavapipe=$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -n 1 || true)
+if [ -n "$lavapipe" ]; then
+  export LD_PRELOAD="$lavapipe"
+  ASAN_OPTIONS="$ASAN_OPTIONS:verify_asan_link_order=0"
+fi
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE 'vulkan|notebooks|stability'

@@ -24,11 +24,11 @@ const std::vector<PassDecl>& filter_passes() {
       {"adaptive_alpha", "filters/asvgf/adaptive_alpha.cpp", "[ASVGF18 Eq. 14-15, Sec. 3.5]", PassScope::Stream,
        "the last reconstruction iteration's delta^ and Delta^",
        {&kLambda, &kAlpha},
-       {"alpha", "alpha_max_radius"},
-       "the pixel's stratum, its delta^, Delta^ and lambda, the largest lambda around it and alpha_i"},
+       {"alpha", "alpha_moments", "alpha_max_radius"},
+       "the pixel's stratum, its delta^, Delta^ and lambda, the largest lambda around it, alpha_i and alpha_mu_i"},
       {"temporal", "filters/svgf/temporal.cpp", "[SVGF17 Sec. 4.1, 4.2]", PassScope::Stream,
        "the stream's 1-spp illumination; depth.Z, normal, id.mesh and motion; last frame's colour history, "
-       "moments, history length and G-buffer; with A-SVGF the adaptive_alpha pass's lambda",
+       "moments, history length and G-buffer; with A-SVGF the adaptive_alpha pass's alpha_i, alpha_mu_i and lambda",
        {&kTemporal, &kMoment1, &kMoment2, &kHistoryLength},
        {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
        "the back-projected position p', each bilinear tap's consistency tests (inside, mesh id, depth, normal) and "
@@ -58,7 +58,7 @@ const std::vector<PassDecl>& filter_passes() {
        "per tap: h, w_rt, w_n, w_x and w; then the sums and the level's colour"},
       {"ema", "filters/svgf/temporal.cpp", "[ASVGF18 Eq. 1, Sec. 4]", PassScope::Stream,
        "the spatial filter's result; depth.Z, normal, id.mesh and motion; last frame's EMA and G-buffer; the "
-       "adaptive_alpha pass's lambda",
+       "adaptive_alpha pass's alpha_i, alpha_mu_i and lambda",
        {&kEma},
        {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
        "as the temporal pass, on the spatial filter's result instead of the 1-spp input"},

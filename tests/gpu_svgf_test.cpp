@@ -353,7 +353,7 @@ TEST_CASE("the Vulkan pipeline follows the golden A-SVGF over 8 frames of pillar
             reconstructed.norm.at(sx, sy) = norm.at(sx * s, sy * s);
           }
         const AdaptiveAlpha chained = adaptive_alpha_pass(reconstructed, s, in.width(), in.height(),
-                                                          options.svgf.alpha, options.asvgf.alpha_max_radius);
+                                                          adaptive_alpha_params(options.svgf, options.asvgf));
         for (size_t i = 0; i < alpha.data.size(); ++i)
           worst_chain = std::max(worst_chain, double(std::abs(alpha.data[i] - chained.alpha.data[i])));
       }

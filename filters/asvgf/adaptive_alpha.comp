@@ -2,9 +2,11 @@
 // (filters/asvgf/adaptive_alpha.cpp), function for function: per stratum lambda = min(1, |delta^| / Delta^), 0 where
 // Delta^ <= 0 [ASVGF18 Eq. 14]; per pixel its maximum over the (2r+1)^2 strata around the pixel's stratum
 // [ASVGF18 Sec. 3.5], strata outside the grid skipped, and alpha_i = (1 - lambda_max) alpha + lambda_max
-// [ASVGF18 Eq. 15]. One invocation per pixel (and per stratum: adaptive_alpha_shared.h).
+// [ASVGF18 Eq. 15], and alpha_mu_i the same of alpha_mu: the only place Eq. 15 is computed on the GPU (SVGF's temporal
+// port reads both). One invocation per pixel (and per stratum: adaptive_alpha_shared.h).
 // The choices the paper leaves open are the golden pass's (filters/asvgf/adaptive_alpha.h).
-//   in:  binding 0 (delta^, Delta^, l, Var) per stratum; out: 1 (lambda_max, alpha_i) per pixel, 2 lambda per stratum.
+//   in:  binding 0 (delta^, Delta^, l, Var) per stratum; out: 1 (lambda_max, alpha_i, alpha_mu_i, 0) per pixel,
+//   2 lambda per stratum.
 //   Layout: filters/asvgf/adaptive_alpha_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order (tests/gpu_adaptive_alpha_test.cpp derives the bound).
@@ -18,7 +20,7 @@ layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSi
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
 RTDR_INPUT_RGBA(0, gradient)
-layout(std430, set = 0, binding = 1) writeonly buffer OutAlpha { vec2 out_alpha[]; };
+layout(std430, set = 0, binding = 1) writeonly buffer OutAlpha { vec4 out_alpha[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer OutLambda { float out_lambda[]; };
 
 layout(push_constant) uniform Push { AdaptiveAlphaPush push; };
@@ -45,8 +47,8 @@ float adaptive_alpha(float alpha, float lambda) {
   return alpha_i;
 }
 
-// The golden per-pixel function, adaptive_alpha_pixel: (lambda_max, alpha_i) at pixel (x, y).
-vec2 adaptive_alpha_pixel(int x, int y) {
+// The golden per-pixel function, adaptive_alpha_pixel: (lambda_max, alpha_i, alpha_mu_i, 0) at pixel (x, y).
+vec4 adaptive_alpha_pixel(int x, int y) {
   const int s = frame.stratum_size, radius = frame.radius;
   const int sx = x / s, sy = y / s;
   // The maximum over the (2r + 1)^2 strata around (sx, sy) [ASVGF18 Sec. 3.5].
@@ -58,7 +60,8 @@ vec2 adaptive_alpha_pixel(int x, int y) {
       const float lambda = gradient_lambda(g.x, g.y);
       lambda_max = max(lambda_max, lambda);
     }
-  return vec2(lambda_max, adaptive_alpha(frame.alpha, lambda_max));
+  // Eq. 15 for the colour and, with the same lambda, for the moments: what the temporal pass reads.
+  return vec4(lambda_max, adaptive_alpha(frame.alpha, lambda_max), adaptive_alpha(frame.alpha_moments, lambda_max), 0.0);
 }
 
 // adaptive_alpha_pass: lambda at every stratum, adaptive_alpha_pixel at every pixel.

@@ -46,49 +46,19 @@ const RgbPlane& SvgfFilter::Stream::spatial_result() const {
   return temporal.color;
 }
 
-void SvgfFilter::adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name) {
-  const SvgfParams& p = options_.svgf;
-  const int s_size = stratum_size_, w = s.noisy.width, h = s.noisy.height;
-  // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
-  time_pass("gradient", [&] { s.gradient = gradient_image(s.noisy, gradient_source_, s.prev_luminance, surface_, s_size); });
-  const auto dump_strata = [&](const LayerDecl& layer, int level, const FloatPlane& strata) {
-    if (dump) dump_layer(dump, layer, name, level, replicate_strata(strata, s_size, w, h));
-  };
-  dump_strata(kGradientDelta, -1, s.gradient.values.delta);
-  dump_strata(kGradientNorm, -1, s.gradient.values.norm);
-  dump_strata(kGradientLuminance, -1, s.gradient.values.luminance);
-  dump_strata(kGradientVariance, -1, s.gradient.values.variance);
-  // 2. Its reconstruction, iteration k reading iteration k - 1 [ASVGF18 Eq. 7-12].
-  s.gradient_levels.clear();
-  for (int level = 0; level < options_.asvgf.gradient_levels; ++level) {
-    time_pass("gradient_atrous", [&] {
-      const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels.back();
-      s.gradient_levels.push_back(gradient_atrous_level(in, s.gradient, level, p));
-    });
-    dump_strata(kGradientLevelDelta, level, s.gradient_levels.back().delta);
-    dump_strata(kGradientLevelNorm, level, s.gradient_levels.back().norm);
-    dump_strata(kGradientLevelLuminance, level, s.gradient_levels.back().luminance);
-    dump_strata(kGradientLevelVariance, level, s.gradient_levels.back().variance);
-  }
-  // 3. lambda and alpha_i [ASVGF18 Eq. 14-15, Sec. 3.5].
-  const GradientValues& reconstructed = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
-  time_pass("adaptive_alpha", [&] {
-    s.adaptive = adaptive_alpha_pass(reconstructed, s_size, w, h, p.alpha, options_.asvgf.alpha_max_radius);
-  });
-  dump_strata(kLambda, -1, s.adaptive.lambda);
-  dump_layer(dump, kAlpha, name, -1, s.adaptive.alpha);
-}
-
 std::optional<TemporalAdaptive> SvgfFilter::temporal_adaptive(const Stream& s) const {
   if (!options_.adaptive) return std::nullopt;
-  return TemporalAdaptive{&s.adaptive.lambda_max, options_.asvgf.history_rule == 0};
+  return s.asvgf.temporal(options_.asvgf);
 }
 
-const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name) {
+const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, Frame* dump,
+                                          const std::string& name) {
   const SvgfParams& p = options_.svgf;
   s.noisy = std::move(noisy);
-  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5].
-  if (options_.adaptive) adaptive_alpha_stream(s, dump, name);
+  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5] (filters/asvgf/asvgf.h).
+  if (options_.adaptive)
+    s.asvgf.filter(s.noisy, std::move(prev_luminance), gradient_samples_, surface_, p, options_.asvgf, dump, name,
+                   [this](const std::string& pass, const std::function<void()>& run) { time_pass(pass, run); });
   // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
   //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
   s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
@@ -153,11 +123,7 @@ InputChannels svgf_input_channels(const SvgfOptions& options) {
       common_input_channels({"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B"});
   if (options.spatial == SpatialFilter::Eaw)
     for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
-  if (options.adaptive) {  // the gradient samples of trace/gradients.h
-    c.floats.push_back("gradient.prev_direct");
-    c.floats.push_back("gradient.prev_indirect");
-    c.uints.push_back("gradient.source");
-  }
+  if (options.adaptive) add_gradient_inputs(c);  // the gradient samples of trace/gradients.h
   return c;
 }
 
@@ -173,19 +139,18 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
-  if (options_.adaptive) {
-    // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
-    stratum_size_ = frame_stratum_size(in, options_.name);
-    gradient_source_ = in.uint_channel("gradient.source");
-    direct_.prev_luminance = in.float_channel("gradient.prev_direct");
-    indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");
-  }
+  // A-SVGF: the gradient samples, and the stratum size they were made with (the render's header, trace/gradients.h).
+  if (options_.adaptive) gradient_samples_ = GradientSamples::from_frame(in, options_.name);
   // The dump receives planes of this frame's size.
   if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
 
   // The two streams are filtered separately [SVGF17 Sec. 3].
-  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "direct");
-  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), dump, "indirect");
+  const auto prev_luminance = [&](const char* stream) {  // A-SVGF: gradient.prev_<stream>
+    return options_.adaptive ? in.float_channel("gradient.prev_" + std::string(stream)) : FloatPlane();
+  };
+  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), prev_luminance("direct"), dump, "direct");
+  const RgbPlane& indirect =
+      filter_stream(indirect_, rgb_plane(in, "indirect"), prev_luminance("indirect"), dump, "indirect");
   // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
   time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
   time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
@@ -212,8 +177,7 @@ const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
 
 std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
   std::vector<const PassDecl*> passes;
-  if (options.adaptive)
-    for (const char* name : {"gradient", "gradient_atrous", "adaptive_alpha"}) passes.push_back(&find_pass(name));
+  if (options.adaptive) passes = asvgf_passes();
   passes.push_back(&find_pass("temporal"));
   if (options.spatial == SpatialFilter::Atrous)
     for (const char* name : {"variance", "prefilter", "atrous"}) passes.push_back(&find_pass(name));
@@ -261,7 +225,7 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
   const Stream& s = stream(stream_name);
   if (find_pass(pass).scope == PassScope::StreamLevel) {
     const size_t count = pass == "eaw"               ? s.eaw_levels.size()
-                         : pass == "gradient_atrous" ? s.gradient_levels.size()
+                         : pass == "gradient_atrous" ? size_t(s.asvgf.levels())
                                                      : s.levels.size();
     if (level < 0 || size_t(level) >= count)
       throw Error("--level " + std::to_string(level) + " is not one of the " + std::to_string(count) + " levels run");
@@ -269,18 +233,10 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
 
   // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
   const SvgfParams& p = options_.svgf;
+  const std::vector<const PassDecl*> asvgf = asvgf_passes();
+  if (options_.adaptive && std::any_of(asvgf.begin(), asvgf.end(), [&](const PassDecl* a) { return a->name == pass; }))
+    return s.asvgf.probe(pass, x, y, level, s.noisy, gradient_samples_, surface_, p, options_.asvgf);
   Probe probe;
-  const int sx = stratum_size_ > 0 ? x / stratum_size_ : 0, sy = stratum_size_ > 0 ? y / stratum_size_ : 0;
-  if (pass == "gradient")
-    gradient_stratum(s.noisy, gradient_source_, s.prev_luminance, surface_, stratum_size_, sx, sy, &probe);
-  if (pass == "gradient_atrous") {
-    const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels[size_t(level - 1)];
-    gradient_atrous_pixel(in, prefilter_variance(in.variance), s.gradient, level, p, sx, sy, &probe);
-  }
-  if (pass == "adaptive_alpha") {
-    const GradientValues& g = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
-    adaptive_alpha_pixel(g, stratum_size_, p.alpha, options_.asvgf.alpha_max_radius, x, y, &probe);
-  }
   const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
   if (pass == "temporal")
     temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);

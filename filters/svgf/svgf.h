@@ -4,17 +4,13 @@
 //   the level `history_level` becoming next frame's colour history;
 // then remodulation and recombination (modulate.h), tone mapping (tonemap.h) and TAA (filters/taa/taa.h).
 // With `ema_after_spatial` (a-eaw) a temporal EMA follows the spatial filter instead of preceding it.
-// With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first turns the frame's gradient samples into a per-pixel
-// alpha: gradient image (filters/asvgf/gradient_image.h) -> reconstruction iterations (gradient_atrous.h) ->
-// lambda and alpha_i (adaptive_alpha.h), which the temporal accumulation uses in place of the constant alpha.
+// With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first runs A-SVGF's passes (filters/asvgf/asvgf.h, which
+// puts them together), whose per-pixel alpha_i the temporal accumulation uses in place of the constant alpha.
 // The same class runs the baselines of filters/baselines/ by switching stages off or swapping the spatial
 // filter, so every method shares the exact same passes (README.md in this folder lists them).
 #pragma once
 
-#include "filters/asvgf/adaptive_alpha.h"
-#include "filters/asvgf/asvgf_params.h"
-#include "filters/asvgf/gradient_atrous.h"
-#include "filters/asvgf/gradient_image.h"
+#include "filters/asvgf/asvgf.h"
 #include "filters/baselines/eaw.h"
 #include "filters/method.h"
 #include "filters/passes.h"
@@ -72,10 +68,7 @@ class SvgfFilter : public Method {
   struct Stream {
     TemporalHistory history;          // colour history, moments, history length, previous G-buffer
     RgbPlane noisy;                   // this frame's input
-    FloatPlane prev_luminance;        // A-SVGF: gradient.prev_<stream>, the previous frame's luminance at j
-    GradientImage gradient;           // A-SVGF: the gradient image
-    std::vector<GradientValues> gradient_levels;  // each reconstruction iteration's output
-    AdaptiveAlpha adaptive;           // lambda and alpha_i
+    AsvgfStream asvgf;                // A-SVGF's passes and what they made (filters/asvgf/asvgf.h)
     TemporalHistory ema_history, seen_ema_history;  // ema_after_spatial: the EMA's history, and what it read
     TemporalOutput ema;               // and its output
     bool ema_enabled = false;
@@ -92,9 +85,9 @@ class SvgfFilter : public Method {
   };
 
   // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
-  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name);
-  // A-SVGF's gradient passes of one stream [ASVGF18 Sec. 3.4, 3.5].
-  void adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name);
+  // `prev_luminance` is its gradient.prev_<stream> with A-SVGF (else empty).
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, Frame* dump,
+                                const std::string& name);
   // What the temporal pass of stream `s` reads of A-SVGF (null without it).
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
   const Stream& stream(const std::string& name) const;
@@ -102,8 +95,7 @@ class SvgfFilter : public Method {
   SvgfOptions options_;
   Stream direct_, indirect_;
   SurfacePlanes surface_, prev_surface_;
-  UIntPlane gradient_source_;  // A-SVGF: gradient.source
-  int stratum_size_ = 0;       // A-SVGF: the render's stratum size
+  GradientSamples gradient_samples_;  // A-SVGF: this frame's gradient samples
   RgbPlane albedo_, emission_, position_;
   RgbPlane color_, tonemapped_, taa_history_, seen_taa_history_, display_;
 };

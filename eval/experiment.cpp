@@ -116,6 +116,12 @@ MethodSpec parse_method_spec(const std::string& text) {
       if (value_text != "fp32" && value_text != "fp16")
         throw Error("method spec '" + text + "': illumination '" + value_text + "' is not one of: fp32, fp16");
       spec.illumination = value_text;
+    } else if (key == "max_bounces") {
+      int bounces = -1;
+      const auto [end, ec] = std::from_chars(value_text.data(), value_text.data() + value_text.size(), bounces);
+      if (ec != std::errc() || end != value_text.data() + value_text.size() || bounces < 0 || bounces > 1024)
+        throw Error("method spec '" + text + "': max_bounces '" + value_text + "' is not a whole number in [0, 1024]");
+      spec.max_bounces = bounces;
     } else if (key == "motion" && trmv_motion_from_name(value_text) >= 0) {
       spec.trmv.motion = trmv_motion_from_name(value_text);  // trmv_params.h's motion row, by name
     } else if (eq == std::string::npos || !parse_double(value_text, value) ||
@@ -124,7 +130,8 @@ MethodSpec parse_method_spec(const std::string& text) {
                  set_gradient_row(spec, key, value))) {
       throw Error("method spec '" + text + "': '" + parts[i] +
                   "' is not parameter=value of svgf_params.h, asvgf_params.h, trmv_params.h or gradient_<row> of "
-                  "trace/gradients.h, motion=traditional|shadow|dual|glossy|all, backend=cpu|vulkan or illumination=fp32|fp16");
+                  "trace/gradients.h, motion=traditional|shadow|dual|glossy|all, backend=cpu|vulkan, illumination=fp32|fp16 or "
+                  "max_bounces=N");
     }
     spec.params += (spec.params.empty() ? "" : ":") + parts[i];
   }
@@ -166,18 +173,62 @@ RgbPlane frame_colour(const Frame& f) {
   return remodulate(rgb_plane(f, "direct"), rgb_plane(f, "indirect"), rgb_plane(f, "albedo"), rgb_plane(f, "emission"));
 }
 
-RenderSettings input_settings(const EvalConfig& c) {
+RenderSettings input_settings(const EvalConfig& c, int max_bounces) {
   RenderSettings settings;
   settings.seed = c.seed;
+  settings.trace.max_bounces = max_bounces < 0 ? c.max_bounces : max_bounces;
   return settings;
 }
 
-RenderSettings reference_settings(const EvalConfig& c) {
+RenderSettings reference_settings(const EvalConfig& c, int max_bounces) {
   RenderSettings settings;
   settings.spp = c.ref_spp;
   settings.seed = c.seed + 1000003u;
+  settings.trace.max_bounces = max_bounces < 0 ? c.max_bounces : max_bounces;
   return settings;
 }
+
+int spec_bounces(const MethodSpec& spec, const EvalConfig& c) { return spec.max_bounces >= 0 ? spec.max_bounces : c.max_bounces; }
+
+namespace {
+
+// The references of one estimator (max_bounces): colour and tone-mapped display per frame, and the moving umbrae.
+struct References {
+  std::vector<RgbPlane> colour, display;
+  std::vector<Region> umbrae;
+};
+
+References render_references(FrameCache& cache, const EvalConfig& c, int bounces, const std::function<void()>& tick) {
+  References r;
+  std::vector<FloatPlane> direct, depth;  // for the umbrae
+  std::vector<RgbPlane> position;
+  const TonemapParams tonemap_params;
+  for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex
+    const Frame ref = cache.get(f, c.width, c.height, reference_settings(c, bounces));
+    r.colour.push_back(frame_colour(ref));
+    r.display.push_back(tonemap(r.colour.back(), tonemap_params));
+    direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
+    depth.push_back(ref.float_channel("depth.Z"));
+    position.push_back(xyz_plane(ref, "position"));
+    tick();
+  }
+  r.umbrae = umbra_regions(direct, position, depth);
+  return r;
+}
+
+// One input sequence: with gradient samples made with `gradient` (rendered in order from frame 0), or without.
+std::vector<Frame> render_inputs(FrameCache& cache, const EvalConfig& c, const RenderSettings& settings,
+                                 const GradientParams* gradient, const std::function<void()>& tick) {
+  std::vector<Frame> inputs;
+  if (gradient) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, settings, *gradient);
+  for (int f = c.first_frame; f <= c.last_frame; ++f) {
+    if (!gradient) inputs.push_back(cache.get(f, c.width, c.height, settings));
+    tick();
+  }
+  return inputs;
+}
+
+}  // namespace
 
 EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   if (c.first_frame < 0 || c.last_frame < c.first_frame || c.last_frame > kMaxFrameIndex)
@@ -189,63 +240,68 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
     throw Error("size " + std::to_string(c.width) + "x" + std::to_string(c.height) + ": evaluation needs at least " +
                 std::to_string(window) + "x" + std::to_string(window) + " (the SSIM window)");
   if (c.gradients) validate(c.gradient);
+  if (c.max_bounces < 0 || c.max_bounces > 1024)
+    throw Error("max_bounces " + std::to_string(c.max_bounces) + " is not in [0, 1024]");
   const Scene scene = load_scene(c.scene);
   FrameCache cache(c.cache_dir, scene);
   std::vector<std::unique_ptr<Method>> methods;
   for (const MethodSpec& spec : c.methods) methods.push_back(make_spec_method(c, spec));
-  const int frames = c.last_frame - c.first_frame + 1;
-  const int total = 2 * frames + int(c.methods.size()) * frames;
-  int done = 0;
-  auto tick = [&] {
-    if (progress) progress(++done, total);
-  };
 
-  // Inputs (1 spp, the seed's noise) and references (ref_spp samples of the same estimator, another seed).
-  std::vector<Frame> inputs;
-  std::vector<RgbPlane> ref_colour, ref_display;
-  std::vector<FloatPlane> ref_direct, ref_depth;  // for the umbrae
-  std::vector<RgbPlane> ref_position;
-  const TonemapParams tonemap_params;
   // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
   // every method without rows of its own gets the same input.
   bool gradients = c.gradients;
   for (size_t m = 0; m < methods.size(); ++m)
     gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
   // With TRMV's shading term when a method reads it (trmv): then every method's input carries it.
-  RenderSettings input = input_settings(c);
+  int shading_samples = 0;
   for (const std::unique_ptr<Method>& m : methods)
-    if (m->reads_shading_term()) input.trace.shading_samples = kTrmvShadingSamples;
-  if (gradients) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, c.gradient);
-  for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex above
-    if (!gradients) inputs.push_back(cache.get(f, c.width, c.height, input));
-    tick();
-    const Frame ref = cache.get(f, c.width, c.height, reference_settings(c));
-    ref_colour.push_back(frame_colour(ref));
-    ref_display.push_back(tonemap(ref_colour.back(), tonemap_params));
-    ref_direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
-    ref_depth.push_back(ref.float_channel("depth.Z"));
-    ref_position.push_back(xyz_plane(ref, "position"));
-    tick();
-  }
-  const std::vector<Region> umbrae = umbra_regions(ref_direct, ref_position, ref_depth);
-  // The inputs of specs with gradient rows of their own, one sequence per set of gradient parameters.
-  std::map<std::vector<double>, std::vector<Frame>> own_inputs;
+    if (m->reads_shading_term()) shading_samples = kTrmvShadingSamples;
+  // Each method's input is keyed by its bounces and gradient parameters, its references by its bounces: the run's
+  // first (in the order the run renders them), then the specs' own.
+  using InputKey = std::pair<int, std::vector<double>>;
+  const auto input_key = [&](const MethodSpec& spec) {
+    return InputKey{spec_bounces(spec, c), gradients ? param_values(spec_gradient(spec, c.gradient)) : std::vector<double>{}};
+  };
+  std::vector<int> bounces{c.max_bounces};
+  std::vector<InputKey> input_keys{{c.max_bounces, gradients ? param_values(c.gradient) : std::vector<double>{}}};
+  std::map<InputKey, GradientParams> input_gradient{{input_keys.front(), c.gradient}};
   for (const MethodSpec& spec : c.methods) {
-    const GradientParams own = spec_gradient(spec, c.gradient);
-    if (!spec.gradient_rows.empty() && param_values(own) != param_values(c.gradient) && !own_inputs.count(param_values(own)))
-      own_inputs[param_values(own)] =
-          cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input, own);
+    if (std::find(bounces.begin(), bounces.end(), spec_bounces(spec, c)) == bounces.end())
+      bounces.push_back(spec_bounces(spec, c));
+    if (std::find(input_keys.begin(), input_keys.end(), input_key(spec)) == input_keys.end()) {
+      input_keys.push_back(input_key(spec));
+      input_gradient[input_keys.back()] = spec_gradient(spec, c.gradient);
+    }
   }
+  const int frames = c.last_frame - c.first_frame + 1;
+  const int total = int(bounces.size() + input_keys.size() + c.methods.size()) * frames;
+  int done = 0;
+  auto tick = [&] {
+    if (progress) progress(++done, total);
+  };
+
+  // Inputs (1 spp, the seed's noise) and references (ref_spp samples of the same estimator, another seed).
+  std::map<InputKey, std::vector<Frame>> inputs;
+  for (size_t k = 0; k < input_keys.size(); ++k) {
+    RenderSettings settings = input_settings(c, input_keys[k].first);
+    settings.trace.shading_samples = shading_samples;
+    const GradientParams& gradient = input_gradient.at(input_keys[k]);  // the run's rows, with a spec's own set
+    inputs[input_keys[k]] = render_inputs(cache, c, settings, gradients ? &gradient : nullptr, tick);
+  }
+  std::map<int, References> references;
+  for (const int b : bounces) references[b] = render_references(cache, c, b, tick);
 
   EvalResult result;
-  result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.back()), tonemap_params)});
+  const TonemapParams tonemap_params;
+  result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.at(input_keys.front()).back()), tonemap_params)});
   for (size_t m = 0; m < methods.size(); ++m) {
-    const auto own = own_inputs.find(param_values(spec_gradient(c.methods[m], c.gradient)));
-    const std::vector<Frame>& method_inputs = own == own_inputs.end() ? inputs : own->second;
-    evaluate_method(c.methods[m], *methods[m], method_inputs, ref_colour, ref_display, umbrae, c, result, tick);
+    const References& r = references.at(spec_bounces(c.methods[m], c));
+    evaluate_method(c.methods[m], *methods[m], inputs.at(input_key(c.methods[m])), r.colour, r.display, r.umbrae, c,
+                    result, tick);
     methods[m].reset();  // its history's memory
   }
-  result.last_frame.push_back({"reference " + std::to_string(c.ref_spp) + " spp", ref_display.back()});
+  result.last_frame.push_back(
+      {"reference " + std::to_string(c.ref_spp) + " spp", references.at(c.max_bounces).display.back()});
   return result;
 }
 

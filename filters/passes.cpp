@@ -35,7 +35,7 @@ const std::vector<PassDecl>& filter_passes() {
        "weight, the 3x3 fallback when no tap is consistent, then alpha, C', mu1', mu2' and n"},
       {"variance", "filters/svgf/variance.cpp", "[SVGF17 Sec. 4.2]", PassScope::Stream,
        "the temporal pass's moments and history length; depth.Z, depth.dX/dY, normal, id.mesh",
-       {&kVariance},
+       {&kVariance, &kVarianceSpatial},
        {"variance_min_history", "sigma_z", "sigma_n", "epsilon"},
        "n, then either mu2' - mu1'^2 (n >= variance_min_history) or the 7x7 spatial estimate: each tap's w_z, w_n "
        "and moments, and the weighted means"},
@@ -135,11 +135,11 @@ std::vector<std::string> layer_channels(const LayerDecl& layer, std::string_view
   return {name + ".R", name + ".G", name + ".B"};
 }
 
-std::vector<std::string> expand_layer(const LayerDecl& layer, int levels) {
+std::vector<std::string> expand_layer(const LayerDecl& layer, int levels, const std::vector<std::string>& streams) {
   const bool per_stream = layer.pattern.find("<s>") != std::string_view::npos;
   const bool per_level = layer.pattern.find("<i>") != std::string_view::npos;
   std::vector<std::string> channels;
-  for (const std::string_view stream : {"direct", "indirect"}) {
+  for (const std::string& stream : streams) {
     for (int level = 0; level < (per_level ? levels : 1); ++level)
       for (std::string& c : layer_channels(layer, stream, per_level ? level : -1)) channels.push_back(std::move(c));
     if (!per_stream) break;
@@ -155,6 +155,7 @@ bool layer_has_channel(const LayerDecl& layer, std::string_view channel) {
       pattern.remove_prefix(3);
       if (channel.substr(0, 6) == "direct") channel.remove_prefix(6);
       else if (channel.substr(0, 8) == "indirect") channel.remove_prefix(8);
+      else if (channel.substr(0, 8) == kCombinedStream) channel.remove_prefix(8);
       else return false;
     } else if (pattern.substr(0, 3) == "<i>") {
       pattern.remove_prefix(3);

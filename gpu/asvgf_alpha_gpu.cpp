@@ -3,6 +3,7 @@
 #include "gpu/asvgf_alpha_gpu.h"
 
 #include "core/error.h"
+#include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/svgf_shaders.h"
 
@@ -35,14 +36,7 @@ AdaptiveAlpha adaptive_alpha_vulkan(VulkanContext& context, const GradientValues
     records[4 * i + 1] = g.norm.data[i];
   }
 
-  const AdaptiveAlphaPush push{.width = uint32_t(width),
-                               .height = uint32_t(height),
-                               .grid_width = uint32_t(gw),
-                               .grid_height = uint32_t(gh),
-                               .stratum_size = s,
-                               .radius = radius,
-                               .alpha = params.alpha,
-                               .alpha_moments = params.alpha_moments};
+  const AdaptiveAlphaPush push = adaptive_alpha_push(width, height, gw, gh, s, params);
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {

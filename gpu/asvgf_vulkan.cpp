@@ -1,7 +1,7 @@
 // A-SVGF's passes on a Vulkan device. See asvgf_vulkan.h; the golden flow it follows is filters/asvgf/asvgf.cpp.
 #include "gpu/asvgf_vulkan.h"
 
-#include "filters/asvgf/gradient_image.h"
+#include "filters/asvgf/asvgf.h"
 #include "filters/passes.h"
 #include "gpu/svgf_planes.h"
 
@@ -38,6 +38,44 @@ struct AsvgfVulkan::Buffers {
   }
 };
 
+GradientImagePush gradient_image_push(int width, int height, int grid_width, int grid_height, int s,
+                                      const GradientForm& form) {
+  return GradientImagePush{.width = uint32_t(width),
+                           .height = uint32_t(height),
+                           .grid_width = uint32_t(grid_width),
+                           .grid_height = uint32_t(grid_height),
+                           .stratum_size = s,
+                           .before = form.before ? 1u : 0u,
+                           .absolute = form.absolute ? 1u : 0u,
+                           .exponent = form.exponent,
+                           .scale = form.scale};
+}
+
+GradientAtrousPush gradient_atrous_push(int grid_width, int grid_height, int level, int s, const SvgfParams& p) {
+  return GradientAtrousPush{.grid_width = uint32_t(grid_width),
+                            .grid_height = uint32_t(grid_height),
+                            .level = level,
+                            .stratum_size = s,
+                            .sigma_z = p.sigma_z,
+                            .sigma_n = p.sigma_n,
+                            .sigma_l = p.sigma_l,
+                            .epsilon = p.epsilon};
+}
+
+AdaptiveAlphaPush adaptive_alpha_push(int width, int height, int grid_width, int grid_height, int s,
+                                      const AdaptiveAlphaParams& params) {
+  return AdaptiveAlphaPush{.width = uint32_t(width),
+                           .height = uint32_t(height),
+                           .grid_width = uint32_t(grid_width),
+                           .grid_height = uint32_t(grid_height),
+                           .stratum_size = s,
+                           .radius = params.radius,
+                           .alpha = params.alpha,
+                           .alpha_moments = params.alpha_moments,
+                           .exponent = params.exponent,
+                           .scale = params.scale};
+}
+
 AsvgfVulkan::AsvgfVulkan(VulkanContext& context) : context_(context) {}
 AsvgfVulkan::~AsvgfVulkan() = default;
 
@@ -46,17 +84,16 @@ uint32_t AsvgfVulkan::commands(const AsvgfParams& p) { return 2 * (2 + uint32_t(
 // Per stream: the gradient image, each iteration, lambda, and the weights.
 uint32_t AsvgfVulkan::dump_commands(const AsvgfParams& p) { return commands(p) + 2; }
 
-void AsvgfVulkan::upload(const Frame& in, const RgbPlane (&noisy)[2], const std::string& method) {
+void AsvgfVulkan::upload(const Frame& in, const RgbPlane (&noisy)[2], const FloatPlane (&prev_luminance)[2],
+                         const std::string& method) {
   const int w = in.width(), h = in.height(), s = frame_stratum_size(in, method);
   if (!buffers_ || buffers_->width != w || buffers_->height != h || buffers_->s != s)
     buffers_ = std::make_unique<Buffers>(context_, w, h, s);
   // (C_i, gradient.prev_<stream>) per stream, and gradient.source (trace/gradients.h).
   for (const int k : {kDirectStream, kIndirectStream}) {
     pack_rgb(noisy[k], *buffers_->noisy_prev[k]);
-    const FloatPlane& prev_luminance =
-        in.float_channel(k == kDirectStream ? "gradient.prev_direct" : "gradient.prev_indirect");
     float* records = buffers_->noisy_prev[k]->data();
-    for (size_t i = 0; i < prev_luminance.data.size(); ++i) records[4 * i + 3] = prev_luminance.data[i];
+    for (size_t i = 0; i < prev_luminance[k].data.size(); ++i) records[4 * i + 3] = prev_luminance[k].data[i];
   }
   pack_ids(in.uint_channel("gradient.source"), *buffers_->source);
 }
@@ -65,25 +102,21 @@ Streams AsvgfVulkan::weights() const { return {buffers_->weights[0].get(), buffe
 
 void AsvgfVulkan::record(ComputeBatch& batch, const SvgfShaders& shaders, const GpuBuffer& surface,
                          const GpuBuffer& depth_grad, const GpuBuffer& mesh, const SvgfParams& p,
-                         const AsvgfParams& asvgf, const DumpCopy* dump) const {
+                         const AsvgfParams& asvgf, const DumpCopy* dump_all, const std::string (&names)[2]) const {
   const Buffers& gb = *buffers_;
   const int w = gb.width, h = gb.height, s = gb.s, gw = gb.grid_width, gh = gb.grid_height;
-  const uint32_t ugw = uint32_t(gw), ugh = uint32_t(gh);
   // A stratum plane's channel c, replicated to the frame's pixels as the golden dump does (gradient_image.h).
   const auto strata = [w, h, s, gw, gh](const GpuBuffer& r, int channels, int c) {
     return replicate_strata(unpack_channel(r, gw, gh, channels, c), s, w, h);
   };
   for (const int k : {kDirectStream, kIndirectStream}) {
-    const std::string name = k == kDirectStream ? "direct" : "indirect";
+    const std::string& name = names[k];
+    const DumpCopy* dump = name.empty() ? nullptr : dump_all;
     // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13]. Its samples' count is not read
     //    back: a rendered frame holds at most one sample per stratum (gradient_image.h; the per-pass port checks).
     const GradientImagePlanes in{gb.noisy_prev[k].get(), gb.source.get(), &surface, &depth_grad, &mesh};
     shaders.gradient_image(batch, in, *gb.values[k][0], *gb.surface, *gb.depth_grad, *gb.mesh, *gb.samples,
-                           GradientImagePush{.width = uint32_t(w),
-                                             .height = uint32_t(h),
-                                             .grid_width = ugw,
-                                             .grid_height = ugh,
-                                             .stratum_size = s});
+                           gradient_image_push(w, h, gw, gh, s, gradient_form(asvgf)));
     if (dump)
       (*dump)(*gb.values[k][0], [strata, name](const GpuBuffer& r, Frame& f) {
         dump_layer(&f, layers::kGradientDelta, name, -1, strata(r, 4, 0));
@@ -96,14 +129,7 @@ void AsvgfVulkan::record(ComputeBatch& batch, const SvgfShaders& shaders, const 
     for (int level = 0; level < levels; ++level) {
       const GpuBuffer& out = *gb.values[k][(level + 1) % 2];
       shaders.gradient_atrous(batch, *gb.values[k][level % 2], *gb.surface, *gb.depth_grad, *gb.mesh, out,
-                              GradientAtrousPush{.grid_width = ugw,
-                                                 .grid_height = ugh,
-                                                 .level = level,
-                                                 .stratum_size = s,
-                                                 .sigma_z = p.sigma_z,
-                                                 .sigma_n = p.sigma_n,
-                                                 .sigma_l = p.sigma_l,
-                                                 .epsilon = p.epsilon});
+                              gradient_atrous_push(gw, gh, level, s, p));
       if (dump)
         (*dump)(out, [strata, name, level](const GpuBuffer& r, Frame& f) {
           dump_layer(&f, layers::kGradientLevelDelta, name, level, strata(r, 4, 0));
@@ -114,14 +140,7 @@ void AsvgfVulkan::record(ComputeBatch& batch, const SvgfShaders& shaders, const 
     }
     // 3. lambda, alpha_i and alpha_mu_i [ASVGF18 Eq. 14-15, Sec. 3.5], from the last iteration's values.
     shaders.adaptive_alpha(batch, *gb.values[k][levels % 2], *gb.weights[k], *gb.lambda[k],
-                           AdaptiveAlphaPush{.width = uint32_t(w),
-                                             .height = uint32_t(h),
-                                             .grid_width = ugw,
-                                             .grid_height = ugh,
-                                             .stratum_size = s,
-                                             .radius = asvgf.alpha_max_radius,
-                                             .alpha = p.alpha,
-                                             .alpha_moments = p.alpha_moments});
+                           adaptive_alpha_push(w, h, gw, gh, s, adaptive_alpha_params(p, asvgf)));
     if (dump) {
       (*dump)(*gb.lambda[k], [strata, name](const GpuBuffer& r, Frame& f) {
         dump_layer(&f, layers::kLambda, name, -1, strata(r, 1, 0));

@@ -7,7 +7,9 @@
 #pragma once
 
 #include "core/frame.h"
+#include "filters/asvgf/adaptive_alpha.h"
 #include "filters/asvgf/asvgf_params.h"
+#include "filters/asvgf/gradient_image.h"
 #include "filters/image.h"
 #include "filters/svgf/svgf_params.h"
 #include "gpu/svgf_shaders.h"
@@ -17,6 +19,15 @@
 #include <string>
 
 namespace rtdr {
+
+// The push constants of A-SVGF's three ports, filled from the golden passes' parameters: one function per block,
+// which the pipeline (record() below) and the per-pass ports (gpu/asvgf_gradient_gpu.cpp, asvgf_atrous_gpu.cpp,
+// asvgf_alpha_gpu.cpp) all call. `width` x `height` is the frame, `grid_width` x `grid_height` its stratum grid.
+GradientImagePush gradient_image_push(int width, int height, int grid_width, int grid_height, int s,
+                                      const GradientForm& form);
+GradientAtrousPush gradient_atrous_push(int grid_width, int grid_height, int level, int s, const SvgfParams& params);
+AdaptiveAlphaPush adaptive_alpha_push(int width, int height, int grid_width, int grid_height, int s,
+                                      const AdaptiveAlphaParams& params);
 
 class AsvgfVulkan {
  public:
@@ -30,14 +41,17 @@ class AsvgfVulkan {
   static uint32_t commands(const AsvgfParams& params);
   static uint32_t dump_commands(const AsvgfParams& params);
 
-  // Packs this frame's inputs: each stream's 1-spp colour with its gradient.prev_<stream>, and gradient.source;
-  // the planes are (re)made for the frame's size and the stratum size of its gradient samples. Throws rtdr::Error
-  // naming `method` for a frame without gradient samples.
-  void upload(const Frame& in, const RgbPlane (&noisy)[2], const std::string& method);
+  // Packs this frame's inputs: each stream's 1-spp colour with its previous luminance (gradient.prev_<stream>, or
+  // their sum for one stream), and gradient.source; the planes are (re)made for the frame's size and the stratum
+  // size of its gradient samples. Throws rtdr::Error naming `method` for a frame without gradient samples.
+  void upload(const Frame& in, const RgbPlane (&noisy)[2], const FloatPlane (&prev_luminance)[2],
+              const std::string& method);
   // Records both streams' passes, reading the current G-buffer's surface records, depth gradient and mesh ids.
-  // With `dump`, each pass's layers (filters/passes.h), as the golden AsvgfStream dumps them.
+  // With `dump`, each pass's layers (filters/passes.h) as the golden AsvgfStream dumps them, for the streams named
+  // in `names` (an empty name: not dumped).
   void record(ComputeBatch& batch, const SvgfShaders& shaders, const GpuBuffer& surface, const GpuBuffer& depth_grad,
-              const GpuBuffer& mesh, const SvgfParams& svgf, const AsvgfParams& asvgf, const DumpCopy* dump) const;
+              const GpuBuffer& mesh, const SvgfParams& svgf, const AsvgfParams& asvgf, const DumpCopy* dump,
+              const std::string (&names)[2]) const;
   // The (lambda_max, alpha_i, alpha_mu_i, 0) records per pixel of each stream, what the temporal port reads.
   Streams weights() const;
 

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "filters/passes.h"
+#include "filters/svgf/variance.h"
 #include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_planes.h"
 
@@ -24,8 +25,21 @@ uint32_t commands_per_frame(const SvgfOptions& o) {
   return (o.adaptive ? AsvgfVulkan::commands(o.asvgf) : 0) + 5 + uint32_t(o.svgf.atrous_levels) + 2;
 }
 
-// The name of each stream in the dump's layer names (filters/passes.h).
-std::string_view stream_name(int stream) { return stream == kDirectStream ? "direct" : "indirect"; }
+// The streams the dump names (filters/passes.h): both, or with streams = 1 the first alone, "combined" (the second
+// stream then filters zeros, GPU only: the golden SvgfFilter does not run it).
+struct DumpStreams {
+  std::vector<int> streams;
+  std::string name[2];
+};
+DumpStreams dump_streams(const SvgfParams& p) {
+  const std::vector<std::string> names = svgf_streams(p);
+  DumpStreams d;
+  for (size_t k = 0; k < names.size(); ++k) {
+    d.streams.push_back(int(k));
+    d.name[k] = names[k];
+  }
+  return d;
+}
 
 }  // namespace
 
@@ -141,7 +155,22 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // 1. Upload: the host packs this frame's planes into the device's records.
   const auto t0 = std::chrono::steady_clock::now();
   const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  const RgbPlane noisy[2] = {rgb_plane(in, "direct"), rgb_plane(in, "indirect")};  // [kDirectStream], [kIndirectStream]
+  // [kDirectStream], [kIndirectStream]; with streams = 1 their sum and zeros (filters/svgf/svgf.h's one_stream), and
+  // with A-SVGF each stream's gradient.prev_<stream>.
+  RgbPlane noisy[2];
+  FloatPlane prev_luminance[2];
+  if (options_.svgf.streams == 2) {
+    noisy[0] = rgb_plane(in, "direct");
+    noisy[1] = rgb_plane(in, "indirect");
+    if (asvgf_) prev_luminance[0] = in.float_channel("gradient.prev_direct");
+    if (asvgf_) prev_luminance[1] = in.float_channel("gradient.prev_indirect");
+  } else {
+    OneStream one = one_stream(in, options_.adaptive);
+    noisy[0] = std::move(one.illumination);
+    noisy[1] = RgbPlane(w, h);
+    prev_luminance[0] = std::move(one.prev_luminance);
+    prev_luminance[1] = FloatPlane(w, h);
+  }
   for (const int s : {kDirectStream, kIndirectStream}) pack_illumination(s, noisy[s], nullptr, *b.noisy);
   pack_rgb(rgb_plane(in, "albedo"), *b.albedo);
   pack_rgb(rgb_plane(in, "emission"), *b.emission);
@@ -149,11 +178,12 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   pack_ids(surface.mesh, *b.mesh[cur]);
   pack_vec2(surface.depth_grad, *b.depth_grad);
   pack_vec2(surface.motion, *b.motion);
-  if (asvgf_) asvgf_->upload(in, noisy, options_.name);  // the gradient samples (trace/gradients.h)
+  if (asvgf_) asvgf_->upload(in, noisy, prev_luminance, options_.name);  // the gradient samples (trace/gradients.h)
   const auto t1 = std::chrono::steady_clock::now();
 
   // 2. One batch of dispatches, in SvgfFilter's order [SVGF17 Sec. 3, 4].
   const SvgfParams& p = options_.svgf;
+  const DumpStreams ds = dump_streams(p);
   const uint32_t uw = uint32_t(w), uh = uint32_t(h);
   // 2a. A-SVGF: each stream's alpha_i from its gradient samples [ASVGF18 Sec. 3.4, 3.5] (gpu/asvgf_vulkan.h).
   if (asvgf_) {
@@ -161,7 +191,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
       d->copy(batch_, plane, std::move(unpack));
     };
     asvgf_->record(batch_, shaders_, *b.surface[cur], *b.depth_grad, *b.mesh[cur], options_.svgf, options_.asvgf,
-                   d ? &copy : nullptr);
+                   d ? &copy : nullptr, ds.name);
   }
   const GBufferPlanes g{b.surface[cur].get(), b.depth_grad.get(), b.mesh[cur].get(), b.motion.get()};
   const HistoryPlanes history{b.history[prev].get(), Buffers::streams(b.moments[prev]), b.surface[prev].get(),
@@ -175,23 +205,26 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   shaders_.temporal(batch_, *b.noisy, g, history, temporal_out, Buffers::streams(b.moments[cur]),
                     asvgf_ ? asvgf_->weights() : Streams{unread_weights_.get(), unread_weights_.get()}, temporal);
   if (d) {
-    d->copy(batch_, temporal_out, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kTemporal, stream_name(s), -1, unpack_illumination(r, w, h, s));
+    d->copy(batch_, temporal_out, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams)
+        dump_layer(&f, layers::kTemporal, ds.name[s], -1, unpack_illumination(r, w, h, s));
     });
-    for (const int s : {kDirectStream, kIndirectStream})
-      d->copy(batch_, *b.moments[cur][s], [w, h, s](const GpuBuffer& r, Frame& f) {  // (mu1', mu2', n, 0)
-        dump_layer(&f, layers::kMoment1, stream_name(s), -1, unpack_channel(r, w, h, 4, 0));
-        dump_layer(&f, layers::kMoment2, stream_name(s), -1, unpack_channel(r, w, h, 4, 1));
-        dump_layer(&f, layers::kHistoryLength, stream_name(s), -1, unpack_channel(r, w, h, 4, 2));
+    for (const int s : ds.streams)
+      d->copy(batch_, *b.moments[cur][s], [w, h, s, ds, mesh = surface.mesh, p](const GpuBuffer& r, Frame& f) {
+        // (mu1', mu2', n, 0); and which variance the variance port takes at each pixel: the golden pass's test of
+        // n (variance_is_spatial), which the port makes on the same n.
+        const FloatPlane n = unpack_channel(r, w, h, 4, 2);
+        dump_layer(&f, layers::kMoment1, ds.name[s], -1, unpack_channel(r, w, h, 4, 0));
+        dump_layer(&f, layers::kMoment2, ds.name[s], -1, unpack_channel(r, w, h, 4, 1));
+        dump_layer(&f, layers::kHistoryLength, ds.name[s], -1, n);
+        dump_layer(&f, layers::kVarianceSpatial, ds.name[s], -1, variance_spatial_plane(n, mesh, p));
       });
   }
   shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, *b.variance,
                     variance_push(uw, uh, p));
   if (d)
-    d->copy(batch_, *b.variance, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kVariance, stream_name(s), -1, unpack_variance(r, w, h, s));
+    d->copy(batch_, *b.variance, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams) dump_layer(&f, layers::kVariance, ds.name[s], -1, unpack_variance(r, w, h, s));
     });
   const GpuBuffer* filtered = p.atrous_levels > 0 ? b.variance.get() : &temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
@@ -201,22 +234,21 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                     p.kernel_size);
     filtered = out;
     if (d) {
-      d->copy(batch_, *out, [w, h, level](const GpuBuffer& r, Frame& f) {
-        for (const int s : {kDirectStream, kIndirectStream}) {
-          dump_layer(&f, layers::kLevel, stream_name(s), level, unpack_illumination(r, w, h, s));
-          dump_layer(&f, layers::kLevelVariance, stream_name(s), level, unpack_variance(r, w, h, s));
+      d->copy(batch_, *out, [w, h, level, ds](const GpuBuffer& r, Frame& f) {
+        for (const int s : ds.streams) {
+          dump_layer(&f, layers::kLevel, ds.name[s], level, unpack_illumination(r, w, h, s));
+          dump_layer(&f, layers::kLevelVariance, ds.name[s], level, unpack_variance(r, w, h, s));
         }
       });
-      d->copy(batch_, *b.prefiltered, [w, h, level](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
-        for (const int s : {kDirectStream, kIndirectStream})
-          dump_layer(&f, layers::kLevelPrefiltered, stream_name(s), level, unpack_channel(r, w, h, 2, s));
+      d->copy(batch_, *b.prefiltered, [w, h, level, ds](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
+        for (const int s : ds.streams)
+          dump_layer(&f, layers::kLevelPrefiltered, ds.name[s], level, unpack_channel(r, w, h, 2, s));
       });
     }
   }
   if (d)
-    d->copy(batch_, *filtered, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kFiltered, stream_name(s), -1, unpack_illumination(r, w, h, s));
+    d->copy(batch_, *filtered, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams) dump_layer(&f, layers::kFiltered, ds.name[s], -1, unpack_illumination(r, w, h, s));
     });
   shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{.width = uw, .height = uh});
   shaders_.tonemap(batch_, *b.colour, *b.tonemapped,

@@ -22,8 +22,9 @@ namespace {
 constexpr int kWidth = 48, kHeight = 27;
 
 // Frames 0..last of `scene` with gradient samples, each filtered by asvgf with its dump; the dumps are returned.
-std::vector<Frame> asvgf_dumps(const Scene& scene, int last, std::vector<Frame>* inputs = nullptr) {
-  const std::unique_ptr<Method> asvgf = make_method("asvgf");
+std::vector<Frame> asvgf_dumps(const Scene& scene, int last, std::vector<Frame>* inputs = nullptr,
+                               const MethodParams& params = method_defaults("asvgf")) {
+  const std::unique_ptr<Method> asvgf = make_method("asvgf", params);
   std::vector<Frame> frames, dumps;
   for (int f = 0; f <= last; ++f) {
     frames.push_back(render_frame_with_gradients(scene, f, kWidth, kHeight, {}, {}, f ? &frames.back() : nullptr));
@@ -103,10 +104,21 @@ TEST_CASE("asvgf: emitters switching on from 0 give lambda = 1, and the temporal
     CHECK(d.float_channel("filter.direct.lambda").data[i] == 1.0f);
     CHECK(alpha.data[i] == 1.0f);
     CHECK(length.data[i] == 1.0f);  // the dropped history restarts (history_rule 0)
+    CHECK(d.float_channel("filter.direct.variance.spatial").data[i] == 1.0f);  // so the variance is spatial
     CHECK(temporal.data[i] == noisy.data[i]);
   }
   INFO(reached << " pixels reached");
   CHECK(reached > kWidth * kHeight / 3);
+  // history_rule 1 keeps SVGF's count: the dump shows n = 3 there at frame 2, the history not restarted.
+  MethodParams keep = method_defaults("asvgf");
+  keep.asvgf.history_rule = 1;
+  const Frame kept = asvgf_dumps(switched_cornell(0.0f, 1.0f), 2, nullptr, keep)[2];
+  int counted = 0;
+  for (size_t i = 0; i < norm.data.size(); ++i) {
+    if (norm.data[i] <= 0.0f || mesh.data[i] == kInvalidId) continue;
+    counted += kept.float_channel("filter.direct.history_length").data[i] == 3.0f;
+  }
+  CHECK(counted > reached / 2);  // all but the pixels whose history was disoccluded
 }
 
 TEST_CASE("a-eaw is EAW followed by the adaptive EMA: on a static scene frame 1 is the mean of EAW's frames 0 and 1") {

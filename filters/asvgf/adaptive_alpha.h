@@ -5,6 +5,8 @@
 //        the base weights alpha and alpha_mu (0.1 for asvgf [ASVGF18 Sec. 5]; filters/asvgf/asvgf.h) and the
 //        radius of the maximum (1: 3x3 strata [ASVGF18 Sec. 3.5])
 //   out: per stratum   lambda(p) = min(1, |delta^(p)| / Delta^(p))                        [ASVGF18 Eq. 14]
+//                      (with gradient_normalize = after and the rows p, k: min(1, k (|delta^| / Delta^)^p); with
+//                      gradient_normalize = before delta^ / Delta^ is the mean ratio already: gradient_image.h)
 //        per pixel     lambda_max = the maximum of lambda over the (2r+1)^2 strata around the pixel's stratum
 //                      alpha_i = (1 - lambda_max) alpha + lambda_max                     [ASVGF18 Eq. 15]
 //                      alpha_mu_i = (1 - lambda_max) alpha_mu + lambda_max, the same for the moments
@@ -25,7 +27,10 @@
 
 namespace rtdr {
 
-// lambda = min(1, |delta^| / Delta^), 0 where Delta^ <= 0 [ASVGF18 Eq. 14].
+// The ratio min(1, k (|delta| / Delta)^p), 0 where Delta <= 0, for p = 1 or 2: Eq. 14 with p = k = 1, and the peers'
+// variants (gradient_image.h, GradientForm), applied after the reconstruction or to each sample before it.
+float gradient_ratio(float delta, float norm, int exponent, float scale);
+// lambda = min(1, |delta^| / Delta^), 0 where Delta^ <= 0 [ASVGF18 Eq. 14]: gradient_ratio with p = k = 1.
 float gradient_lambda(float delta, float norm);
 // alpha_i = (1 - lambda) alpha + lambda [ASVGF18 Eq. 15].
 float adaptive_alpha(float alpha, float lambda);
@@ -35,6 +40,8 @@ struct AdaptiveAlphaParams {
   float alpha = 0.1f;           // alpha of Eq. 15, the colour's (SvgfParams::alpha)
   float alpha_moments = 0.1f;   // the moments' (SvgfParams::alpha_moments)
   int radius = 1;               // the maximum over (2 radius + 1)^2 strata (AsvgfParams::alpha_max_radius)
+  int exponent = 1;             // p and k of lambda = min(1, k (|delta^| / Delta^)^p): 1 and 1 for Eq. 14, and
+  float scale = 1.0f;           // with gradient_normalize = before (asvgf.h's adaptive_alpha_params)
 };
 
 struct AdaptiveAlpha {

@@ -39,10 +39,12 @@ struct AdaptiveAlphaPush {
   RTDR_SHARED_INT radius;        // r (>= 0): the maximum over (2r + 1)^2 strata
   float alpha;                   // the base alpha of Eq. 15, the colour's
   float alpha_moments;           // and the moments'
+  RTDR_SHARED_INT exponent;      // p and k of lambda = min(1, k (|delta^| / Delta^)^p) (AdaptiveAlphaParams)
+  float scale;
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(AdaptiveAlphaPush) == 32, "eight 4-byte fields, the std430 layout of the GLSL block");
+static_assert(sizeof(AdaptiveAlphaPush) == 40, "ten 4-byte fields, the std430 layout of the GLSL block");
 }  // namespace rtdr
 #endif
 

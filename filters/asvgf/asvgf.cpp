@@ -31,8 +31,15 @@ GradientSamples GradientSamples::from_frame(const Frame& frame, const std::strin
   return samples;
 }
 
+GradientForm gradient_form(const AsvgfParams& asvgf) {
+  return {asvgf.gradient_normalize == 1, asvgf.gradient_abs == 1, asvgf.gradient_exponent, asvgf.gradient_scale};
+}
+
 AdaptiveAlphaParams adaptive_alpha_params(const SvgfParams& svgf, const AsvgfParams& asvgf) {
-  return {svgf.alpha, svgf.alpha_moments, asvgf.alpha_max_radius};
+  // Normalised before the reconstruction, delta^ / Delta^ is the mean ratio already: p and k were applied per sample.
+  const bool after = asvgf.gradient_normalize == 0;
+  return {svgf.alpha, svgf.alpha_moments, asvgf.alpha_max_radius, after ? asvgf.gradient_exponent : 1,
+          after ? asvgf.gradient_scale : 1.0f};
 }
 
 void AsvgfStream::filter(const RgbPlane& noisy, FloatPlane prev_luminance, const GradientSamples& samples,
@@ -41,7 +48,8 @@ void AsvgfStream::filter(const RgbPlane& noisy, FloatPlane prev_luminance, const
   prev_luminance_ = std::move(prev_luminance);
   const int s = samples.stratum_size, w = noisy.width, h = noisy.height;
   // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
-  time("gradient", [&] { gradient_ = gradient_image(noisy, samples.source, prev_luminance_, surface, s); });
+  time("gradient",
+       [&] { gradient_ = gradient_image(noisy, samples.source, prev_luminance_, surface, s, gradient_form(asvgf)); });
   const auto dump_strata = [&](const LayerDecl& layer, int level, const FloatPlane& strata) {
     if (dump) dump_layer(dump, layer, name, level, replicate_strata(strata, s, w, h));
   };
@@ -74,7 +82,8 @@ Probe AsvgfStream::probe(const std::string& pass, int x, int y, int level, const
                          const AsvgfParams& asvgf) const {
   Probe probe;
   const int s = samples.stratum_size, sx = x / s, sy = y / s;
-  if (pass == "gradient") gradient_stratum(noisy, samples.source, prev_luminance_, surface, s, sx, sy, &probe);
+  if (pass == "gradient")
+    gradient_stratum(noisy, samples.source, prev_luminance_, surface, s, sx, sy, gradient_form(asvgf), &probe);
   if (pass == "gradient_atrous") {
     const GradientValues& in = level == 0 ? gradient_.values : levels_[size_t(level - 1)];
     gradient_atrous_pixel(in, prefilter_variance(in.variance), gradient_, level, svgf, sx, sy, &probe);

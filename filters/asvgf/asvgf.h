@@ -79,7 +79,8 @@ class AsvgfStream {
   const GradientValues& reconstructed() const { return levels_.empty() ? gradient_.values : levels_.back(); }
 };
 
-// What the adaptive_alpha pass reads of the tables.
+// What the gradient and adaptive_alpha passes read of the tables.
+GradientForm gradient_form(const AsvgfParams& asvgf);
 AdaptiveAlphaParams adaptive_alpha_params(const SvgfParams& svgf, const AsvgfParams& asvgf);
 
 }  // namespace rtdr

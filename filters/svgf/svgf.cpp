@@ -77,6 +77,7 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, FloatPlane 
   if (options_.spatial == SpatialFilter::Atrous) {
     time_pass("variance", [&] { s.variance = variance_pass(s.temporal, surface_, p); });
     dump_layer(dump, kVariance, name, -1, s.variance);
+    if (dump) dump_layer(dump, kVarianceSpatial, name, -1, variance_spatial_plane(s.temporal.length, surface_.mesh, p));
     for (int level = 0; level < p.atrous_levels; ++level) {
       time_pass("atrous", [&] {
         s.levels.push_back(atrous_level(s.level_input_color(level), s.level_input_variance(level), surface_, level, p));
@@ -144,15 +145,23 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   // The dump receives planes of this frame's size.
   if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
 
-  // The two streams are filtered separately [SVGF17 Sec. 3].
   const auto prev_luminance = [&](const char* stream) {  // A-SVGF: gradient.prev_<stream>
     return options_.adaptive ? in.float_channel("gradient.prev_" + std::string(stream)) : FloatPlane();
   };
-  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), prev_luminance("direct"), dump, "direct");
-  const RgbPlane& indirect =
-      filter_stream(indirect_, rgb_plane(in, "indirect"), prev_luminance("indirect"), dump, "indirect");
+  if (options_.svgf.streams == 2) {
+    // The two streams are filtered separately [SVGF17 Sec. 3].
+    filtered_[0] = &filter_stream(direct_, rgb_plane(in, "direct"), prev_luminance("direct"), dump, "direct");
+    filtered_[1] = &filter_stream(indirect_, rgb_plane(in, "indirect"), prev_luminance("indirect"), dump, "indirect");
+  } else {
+    // One stream, direct + indirect, with one gradient [ASVGF18 Sec. 4]: luminance is linear, so the previous
+    // frame's luminance of the sum is the sum of the two (the samples' albedo divides out of both alike).
+    const OneStream one = one_stream(in, options_.adaptive);
+    filtered_[0] = &filter_stream(direct_, one.illumination, one.prev_luminance, dump, kCombinedStream);
+    no_light_ = RgbPlane(in.width(), in.height());
+    filtered_[1] = &no_light_;
+  }
   // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
-  time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
+  time_pass("modulate", [&] { color_ = remodulate(*filtered_[0], *filtered_[1], albedo_, emission_); });
   time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
   seen_taa_history_ = taa_history_;
   if (options_.taa && taa_history_.width == in.width())
@@ -170,9 +179,29 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
 }
 
 const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
-  if (name == "direct") return direct_;
-  if (name == "indirect") return indirect_;
-  throw Error("--stream '" + name + "' is not direct or indirect");
+  const std::vector<std::string> streams = svgf_streams(options_.svgf);
+  if (name == streams.front()) return direct_;
+  if (streams.size() == 2 && name == streams.back()) return indirect_;
+  std::string known;
+  for (const std::string& s : streams) known += (known.empty() ? "" : " or ") + s;
+  throw Error("--stream '" + name + "' is not " + known + " (streams = " + std::to_string(options_.svgf.streams) + ")");
+}
+
+std::vector<std::string> svgf_streams(const SvgfParams& params) {
+  if (params.streams == 1) return {kCombinedStream};
+  return {"direct", "indirect"};
+}
+
+OneStream one_stream(const Frame& in, bool adaptive) {
+  OneStream one{rgb_plane(in, "direct"), FloatPlane()};
+  const RgbPlane indirect = rgb_plane(in, "indirect");
+  for (size_t i = 0; i < one.illumination.data.size(); ++i) one.illumination.data[i] += indirect.data[i];
+  if (adaptive) {  // gradient.prev_direct + gradient.prev_indirect
+    one.prev_luminance = in.float_channel("gradient.prev_direct");
+    const FloatPlane& prev_indirect = in.float_channel("gradient.prev_indirect");
+    for (size_t i = 0; i < one.prev_luminance.data.size(); ++i) one.prev_luminance.data[i] += prev_indirect.data[i];
+  }
+  return one;
 }
 
 std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
@@ -198,7 +227,8 @@ std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) {
     for (const LayerDecl* layer : pass->writes)
       if (layer->use == LayerUse::Dump)
         for (std::string& channel :
-             expand_layer(*layer, pass->name == "gradient_atrous" ? options.asvgf.gradient_levels : levels))
+             expand_layer(*layer, pass->name == "gradient_atrous" ? options.asvgf.gradient_levels : levels,
+                          svgf_streams(options.svgf)))
           if (std::find(channels.begin(), channels.end(), channel) == channels.end())
             channels.push_back(std::move(channel));
   return channels;
@@ -249,8 +279,7 @@ Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string
                  surface_, level, p, x, y, &probe);
   if (pass == "eaw") eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, &probe);
   if (pass == "modulate")
-    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y),
-                     &probe);
+    remodulate_pixel(filtered_[0]->at(x, y), filtered_[1]->at(x, y), albedo_.at(x, y), emission_.at(x, y), &probe);
   if (pass == "tonemap") tonemap_pixel(color_.at(x, y), options_.tonemap, &probe);
   if (pass == "taa")
     taa_pixel(tonemapped_, seen_taa_history_, surface_.motion, x, y, options_.taa_params, TaaJitter{}, &probe);

@@ -43,6 +43,19 @@ struct SvgfOptions {
   TaaParams taa_params;
 };
 
+// The illumination streams a filter with `params` runs, by their names in the dump's layers (filters/passes.h):
+// "direct" and "indirect" filtered apart [SVGF17 Sec. 3], or with streams = 1 "combined", their sum filtered as one
+// stream, with one gradient [ASVGF18 Sec. 4: "we do not separate direct and indirect illumination"].
+std::vector<std::string> svgf_streams(const SvgfParams& params);
+
+// streams = 1: the frame's direct + indirect illumination, and with `adaptive` (A-SVGF) gradient.prev_direct +
+// gradient.prev_indirect, the previous luminance of the sum. The Vulkan pipeline filters the same (gpu/svgf_vulkan.h).
+struct OneStream {
+  RgbPlane illumination;
+  FloatPlane prev_luminance;
+};
+OneStream one_stream(const Frame& in, bool adaptive);
+
 // The channels a filter with `options` reads from each input frame: the G-buffer (SurfacePlanes::from_frame),
 // albedo, emission, both illumination streams, and `position` for the EAW spatial filter. The Vulkan ports read
 // the same (gpu/svgf_vulkan.h).
@@ -84,7 +97,7 @@ class SvgfFilter : public Method {
     const RgbPlane& filtered() const;        // the stream's result: the EMA's output, else spatial_result()
   };
 
-  // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
+  // Runs one stream's passes; `name` is the stream, "direct", "indirect" or "combined", for the dump's layer names.
   // `prev_luminance` is its gradient.prev_<stream> with A-SVGF (else empty).
   const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, Frame* dump,
                                 const std::string& name);
@@ -92,11 +105,14 @@ class SvgfFilter : public Method {
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
   const Stream& stream(const std::string& name) const;
 
+
   SvgfOptions options_;
   Stream direct_, indirect_;
   SurfacePlanes surface_, prev_surface_;
   GradientSamples gradient_samples_;  // A-SVGF: this frame's gradient samples
   RgbPlane albedo_, emission_, position_;
+  RgbPlane no_light_;                 // streams = 1: the empty second stream that modulate adds (all 0)
+  const RgbPlane* filtered_[2] = {};  // what modulate read this frame: the direct (or combined) and indirect results
   RgbPlane color_, tonemapped_, taa_history_, seen_taa_history_, display_;
 };
 

@@ -10,6 +10,7 @@
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "eval/run_memory.h"
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 #include "trace/render_frame.h"
@@ -74,6 +75,9 @@ void run_render(const RenderOptions& o) {
   }
   if (o.gradients && o.true_change)
     throw Error("--true-change measures a frame's own surface samples: render it without --gradients");
+  // What the run will hold, against the memory there is (eval/run_memory.h), before any work.
+  require_run_fits("render", size.width, size.height,
+                   render_planes(rendered_frame_planes(scene, o.settings, o.gradients), o.gradients), memory_budget());
   std::optional<Frame> prev = o.gradients ? frame_before(o, scene, frames, size) : std::nullopt;
   StagedOutputDir out(o.out);  // the frames appear when the last one is done; a failed run leaves none
 
@@ -121,7 +125,8 @@ Command add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--frames", o->frames, frames_help(", or one frame A; frame f is at t = f/fps"))
       ->capture_default_str();
-  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT; refused when the run would not fit in the memory available")
+      ->capture_default_str();
   sub->add_option("--out", o->out, "output directory (created if missing)")->capture_default_str();
   sub->add_option("--spp", o->settings.spp, "samples per pixel: 1 for denoiser input, e.g. 1024 for reference frames")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();

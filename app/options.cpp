@@ -3,11 +3,13 @@
 #include "core/error.h"
 #include "core/frame.h"        // kMaxFrameIndex
 #include "raster/visibility.h"  // kMaxImageSize: the rasterizer's limit
+#include "filters/trmv/trmv_params.h"
 #include "trace/gradients.h"
 
 #include <algorithm>
 #include <charconv>
 #include <functional>
+#include <iterator>
 #include <sstream>
 
 namespace rtdr {
@@ -18,6 +20,25 @@ bool parse_int(std::string_view s, int& out) {
   if (s.empty()) return false;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
   return ec == std::errc() && end == s.data() + s.size();
+}
+
+// TRMV's motion row takes its names as well as its numbers (trmv_params.h kTrmvMotionNames), as rtdr eval's
+// specs do (trmv:motion=shadow or trmv:motion=1): a name becomes its number before the range check.
+void accept_motion_names(CLI::Option* option) {
+  std::string names;
+  for (int m = 0; m < int(std::size(kTrmvMotionNames)); ++m)
+    names += (m ? ", " : "") + std::string(kTrmvMotionNames[m]) + " " + std::to_string(m);
+  option->description(option->get_description() + " (a name or its number: " + names + ")");
+  option->transform(CLI::Validator(
+      [names](std::string& value) {
+        const int m = trmv_motion_from_name(value);
+        if (m >= 0) value = std::to_string(m);
+        int number = -1;
+        if (m >= 0 || (parse_int(value, number) && number >= 0 && number < int(std::size(kTrmvMotionNames))))
+          return std::string();
+        return "'" + value + "' is not one of " + names;
+      },
+      "NAME|N", "TRMV motion"));
 }
 
 }  // namespace
@@ -102,6 +123,7 @@ void add_method_flags(CLI::App* sub, MethodParams& p, const std::string& method)
   }
   RTDR_METHOD_PARAM_TABLES(RTDR_TABLE_FLAGS)
 #undef RTDR_TABLE_FLAGS
+  accept_motion_names(sub->get_option(param_flag("trmv-", "motion")));
 #undef RTDR_METHOD_DEFAULT_HELP
   // Once parsed: every row whose flag was not given takes the method's default. (An unknown method is left to
   // make_method, which names the known ones; nothing may throw here, inside CLI11's parse.)

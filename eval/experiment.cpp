@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "eval/frame_cache.h"
 #include "eval/metrics.h"
+#include "eval/run_memory.h"
 #include "filters/method.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
@@ -46,7 +47,8 @@ std::unique_ptr<Method> make_spec_method(const EvalConfig& c, const MethodSpec& 
 // One method over the whole sequence: a row of metrics per frame.
 void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<Frame>& inputs,
                      const std::vector<RgbPlane>& ref_colour, const std::vector<RgbPlane>& ref_display,
-                     const std::vector<Region>& umbrae, const EvalConfig& c, EvalResult& result,
+                     const std::vector<double>& ref_temporal, const std::vector<Region>& umbrae, const EvalConfig& c,
+                     EvalResult& result,
                      const std::function<void()>& tick) {
   RgbPlane previous_display;
   for (size_t k = 0; k < inputs.size(); ++k) {
@@ -64,12 +66,13 @@ void evaluate_method(const MethodSpec& spec, Method& method, const std::vector<F
     row.umbra_rmse = rmse(colour, ref_colour[k], umbrae[k]);
     row.gradient_share = gradient_sample_share(inputs[k]);
     row.temporal_error = k == 0 ? std::numeric_limits<double>::quiet_NaN() : temporal_error(display, previous_display);
+    row.ref_temporal_error = ref_temporal[k];
     row.ms = method.pass_times();
     row.ms_total = total_ms(row.ms);  // without the host's transfer, as rtdr bench
     result.rows.push_back(row);
     previous_display = display;
     if (c.observe) c.observe(spec, row.frame, out, ref_colour[k]);
-    if (k + 1 == inputs.size() && spec.params.empty()) result.last_frame.push_back({spec.text, display});
+    if (k + 1 == inputs.size()) result.last_frame.push_back({spec.text, display});
     tick();
   }
 }
@@ -192,19 +195,22 @@ int spec_bounces(const MethodSpec& spec, const EvalConfig& c) { return spec.max_
 
 namespace {
 
-// The references of one estimator (max_bounces): colour and tone-mapped display per frame, and the moving umbrae.
+// The references of one estimator (one sequence of EvalRenders::references): colour and tone-mapped display per
+// frame, the reference's own change between frames, and the moving umbrae.
 struct References {
   std::vector<RgbPlane> colour, display;
+  std::vector<double> temporal;
   std::vector<Region> umbrae;
 };
 
-References render_references(FrameCache& cache, const EvalConfig& c, int bounces, const std::function<void()>& tick) {
+References render_references(FrameCache& cache, const EvalConfig& c, const RenderSettings& settings,
+                             const std::function<void()>& tick) {
   References r;
   std::vector<FloatPlane> direct, depth;  // for the umbrae
   std::vector<RgbPlane> position;
   const TonemapParams tonemap_params;
   for (int f = c.first_frame; f <= c.last_frame; ++f) {  // no overflow: checked against kMaxFrameIndex
-    const Frame ref = cache.get(f, c.width, c.height, reference_settings(c, bounces));
+    const Frame ref = cache.get(f, c.width, c.height, settings);
     r.colour.push_back(frame_colour(ref));
     r.display.push_back(tonemap(r.colour.back(), tonemap_params));
     direct.push_back(luminance_plane(rgb_plane(ref, "direct")));
@@ -213,24 +219,38 @@ References render_references(FrameCache& cache, const EvalConfig& c, int bounces
     tick();
   }
   r.umbrae = umbra_regions(direct, position, depth);
+  // The reference's own change between frames [SVGF17 Sec. 5.4]: the scene's real motion, what a method's temporal
+  // error is read against.
+  r.temporal.push_back(std::numeric_limits<double>::quiet_NaN());
+  for (size_t k = 1; k < r.display.size(); ++k) r.temporal.push_back(temporal_error(r.display[k], r.display[k - 1]));
   return r;
 }
 
-// One input sequence: with gradient samples made with `gradient` (rendered in order from frame 0), or without.
-std::vector<Frame> render_inputs(FrameCache& cache, const EvalConfig& c, const RenderSettings& settings,
-                                 const GradientParams* gradient, const std::function<void()>& tick) {
+// One input sequence: with gradient samples (rendered in order from frame 0), or without.
+std::vector<Frame> render_inputs(FrameCache& cache, const EvalConfig& c, const EvalRenders::Input& input,
+                                 const std::function<void()>& tick) {
   std::vector<Frame> inputs;
-  if (gradient) inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, settings, *gradient);
+  if (input.gradient)
+    inputs = cache.gradient_frames(c.first_frame, c.last_frame, c.width, c.height, input.settings, *input.gradient);
   for (int f = c.first_frame; f <= c.last_frame; ++f) {
-    if (!gradient) inputs.push_back(cache.get(f, c.width, c.height, settings));
+    if (!input.gradient) inputs.push_back(cache.get(f, c.width, c.height, input.settings));
     tick();
   }
   return inputs;
 }
 
+// The index of `item` in `list`, added at the end when no element is `same` as it.
+template <typename T, typename Same>
+size_t index_of(std::vector<T>& list, T item, Same same) {
+  for (size_t k = 0; k < list.size(); ++k)
+    if (same(list[k], item)) return k;
+  list.push_back(std::move(item));
+  return list.size() - 1;
+}
+
 }  // namespace
 
-EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+void check_eval_config(const EvalConfig& c) {
   if (c.first_frame < 0 || c.last_frame < c.first_frame || c.last_frame > kMaxFrameIndex)
     throw Error("frames " + std::to_string(c.first_frame) + "-" + std::to_string(c.last_frame) +
                 ": need 0 <= first <= last <= " + std::to_string(kMaxFrameIndex));
@@ -242,66 +262,87 @@ EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
   if (c.gradients) validate(c.gradient);
   if (c.max_bounces < 0 || c.max_bounces > 1024)
     throw Error("max_bounces " + std::to_string(c.max_bounces) + " is not in [0, 1024]");
-  const Scene scene = load_scene(c.scene);
-  FrameCache cache(c.cache_dir, scene);
-  std::vector<std::unique_ptr<Method>> methods;
-  for (const MethodSpec& spec : c.methods) methods.push_back(make_spec_method(c, spec));
+}
 
+EvalRenders eval_renders(const EvalConfig& c, const std::vector<const Method*>& methods) {
   // With gradient samples when asked, or when a method reads them (asvgf) or names gradient rows of its own: then
-  // every method without rows of its own gets the same input.
+  // every method without rows of its own gets the same input. With TRMV's shading term when a method reads it
+  // (trmv): then every method's input carries it.
   bool gradients = c.gradients;
-  for (size_t m = 0; m < methods.size(); ++m)
-    gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
-  // With TRMV's shading term when a method reads it (trmv): then every method's input carries it.
   int shading_samples = 0;
-  for (const std::unique_ptr<Method>& m : methods)
-    if (m->reads_shading_term()) shading_samples = kTrmvShadingSamples;
-  // Each method's input is keyed by its bounces and gradient parameters, its references by its bounces: the run's
-  // first (in the order the run renders them), then the specs' own.
-  using InputKey = std::pair<int, std::vector<double>>;
-  const auto input_key = [&](const MethodSpec& spec) {
-    return InputKey{spec_bounces(spec, c), gradients ? param_values(spec_gradient(spec, c.gradient)) : std::vector<double>{}};
-  };
-  std::vector<int> bounces{c.max_bounces};
-  std::vector<InputKey> input_keys{{c.max_bounces, gradients ? param_values(c.gradient) : std::vector<double>{}}};
-  std::map<InputKey, GradientParams> input_gradient{{input_keys.front(), c.gradient}};
-  for (const MethodSpec& spec : c.methods) {
-    if (std::find(bounces.begin(), bounces.end(), spec_bounces(spec, c)) == bounces.end())
-      bounces.push_back(spec_bounces(spec, c));
-    if (std::find(input_keys.begin(), input_keys.end(), input_key(spec)) == input_keys.end()) {
-      input_keys.push_back(input_key(spec));
-      input_gradient[input_keys.back()] = spec_gradient(spec, c.gradient);
-    }
+  for (size_t m = 0; m < methods.size(); ++m) {
+    gradients = gradients || methods[m]->reads_gradient_samples() || !c.methods[m].gradient_rows.empty();
+    if (methods[m]->reads_shading_term()) shading_samples = kTrmvShadingSamples;
   }
+  const auto input = [&](int bounces, const GradientParams& gradient) {
+    EvalRenders::Input in{input_settings(c, bounces), std::nullopt};
+    in.settings.trace.shading_samples = shading_samples;
+    if (gradients) in.gradient = gradient;
+    return in;
+  };
+  // Inputs are the same sequence when their bounces and gradient parameters are; references when their bounces are.
+  const auto same_input = [](const EvalRenders::Input& a, const EvalRenders::Input& b) {
+    return a.settings.trace.max_bounces == b.settings.trace.max_bounces &&
+           (a.gradient ? param_values(*a.gradient) : std::vector<double>{}) ==
+               (b.gradient ? param_values(*b.gradient) : std::vector<double>{});
+  };
+  const auto same_reference = [](const RenderSettings& a, const RenderSettings& b) {
+    return a.trace.max_bounces == b.trace.max_bounces;
+  };
+  EvalRenders r;
+  r.inputs.push_back(input(c.max_bounces, c.gradient));  // the run's first
+  r.references.push_back(reference_settings(c, c.max_bounces));
+  for (const MethodSpec& spec : c.methods) {
+    const int bounces = spec_bounces(spec, c);
+    r.method_input.push_back(index_of(r.inputs, input(bounces, spec_gradient(spec, c.gradient)), same_input));
+    r.method_reference.push_back(index_of(r.references, reference_settings(c, bounces), same_reference));
+  }
+  return r;
+}
+
+EvalResult run_eval(const EvalConfig& c, const EvalProgress& progress) {
+  check_eval_config(c);
+  const Scene scene = load_scene(c.scene);
+  std::vector<std::unique_ptr<Method>> methods;
+  std::vector<const Method*> made;
+  for (const MethodSpec& spec : c.methods) {
+    methods.push_back(make_spec_method(c, spec));
+    made.push_back(methods.back().get());
+  }
+  const EvalRenders renders = eval_renders(c, made);
   const int frames = c.last_frame - c.first_frame + 1;
-  const int total = int(bounces.size() + input_keys.size() + c.methods.size()) * frames;
+  const int total = int(renders.inputs.size() + renders.references.size() + c.methods.size()) * frames;
   int done = 0;
   auto tick = [&] {
     if (progress) progress(++done, total);
   };
 
+  // What the run will hold, against the memory there is (run_memory.h), before anything is rendered or cached.
+  uint64_t most_method_planes = 0;
+  for (const std::unique_ptr<Method>& m : methods) most_method_planes = std::max(most_method_planes, method_planes(*m));
+  const EvalRenders::Input& first = renders.inputs.front();
+  require_run_fits("eval", c.width, c.height,
+                   eval_planes(rendered_frame_planes(scene, first.settings, first.gradient.has_value()), frames,
+                               most_method_planes, int(renders.inputs.size()), int(renders.references.size())),
+                   memory_budget());
   // Inputs (1 spp, the seed's noise) and references (ref_spp samples of the same estimator, another seed).
-  std::map<InputKey, std::vector<Frame>> inputs;
-  for (size_t k = 0; k < input_keys.size(); ++k) {
-    RenderSettings settings = input_settings(c, input_keys[k].first);
-    settings.trace.shading_samples = shading_samples;
-    const GradientParams& gradient = input_gradient.at(input_keys[k]);  // the run's rows, with a spec's own set
-    inputs[input_keys[k]] = render_inputs(cache, c, settings, gradients ? &gradient : nullptr, tick);
-  }
-  std::map<int, References> references;
-  for (const int b : bounces) references[b] = render_references(cache, c, b, tick);
+  FrameCache cache(c.cache_dir, scene);
+  std::vector<std::vector<Frame>> inputs;
+  for (const EvalRenders::Input& input : renders.inputs) inputs.push_back(render_inputs(cache, c, input, tick));
+  std::vector<References> references;
+  for (const RenderSettings& settings : renders.references)
+    references.push_back(render_references(cache, c, settings, tick));
 
   EvalResult result;
   const TonemapParams tonemap_params;
-  result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.at(input_keys.front()).back()), tonemap_params)});
+  result.last_frame.push_back({"1 spp input", tonemap(frame_colour(inputs.front().back()), tonemap_params)});
   for (size_t m = 0; m < methods.size(); ++m) {
-    const References& r = references.at(spec_bounces(c.methods[m], c));
-    evaluate_method(c.methods[m], *methods[m], inputs.at(input_key(c.methods[m])), r.colour, r.display, r.umbrae, c,
-                    result, tick);
+    const References& r = references[renders.method_reference[m]];
+    evaluate_method(c.methods[m], *methods[m], inputs[renders.method_input[m]], r.colour, r.display, r.temporal,
+                    r.umbrae, c, result, tick);
     methods[m].reset();  // its history's memory
   }
-  result.last_frame.push_back(
-      {"reference " + std::to_string(c.ref_spp) + " spp", references.at(c.max_bounces).display.back()});
+  result.last_frame.push_back({"reference " + std::to_string(c.ref_spp) + " spp", references.front().display.back()});
   return result;
 }
 
@@ -311,12 +352,13 @@ void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& r
     for (const auto& [pass, ms] : r.ms) passes.insert(pass);
   std::ostringstream csv;
   csv.precision(9);
-  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,brightness_error,umbra_rmse,gradient_share,ms_total";
+  csv << "method,params,frame,rmse,relmse,ssim,flip,temporal_error,ref_temporal_error,brightness_error,umbra_rmse,"
+         "gradient_share,ms_total";
   for (const std::string& p : passes) csv << ",ms_" << p;
   csv << '\n';
   for (const MetricsRow& r : rows) {
     csv << r.method << ',' << r.params << ',' << r.frame << ',' << r.rmse << ',' << r.relmse << ',' << r.ssim << ','
-        << r.flip << ',' << r.temporal_error << ',' << r.brightness_error << ',' << r.umbra_rmse << ','
+        << r.flip << ',' << r.temporal_error << ',' << r.ref_temporal_error << ',' << r.brightness_error << ',' << r.umbra_rmse << ','
         << r.gradient_share << ',' << r.ms_total;
     for (const std::string& p : passes) {
       csv << ',';

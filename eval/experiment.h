@@ -6,6 +6,8 @@
 //   ssim, flip        on tone-mapped display values in [0, 1] (the method's `display`, TAA included,
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
+//   ref_temporal_error  the same between consecutive reference frames: the scene's own change, the same in every
+//                    method's row (temporal_error.png draws it beside the methods)
 //   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
 //   umbra_rmse       rmse over the moving umbrae only, Fig. 5's umbra (eval/metrics.h umbra_regions; NaN
 //                    where a frame has none, as under a moving camera)
@@ -35,6 +37,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,6 +97,7 @@ struct MetricsRow {
   int frame = 0;
   double rmse = 0, relmse = 0, ssim = 0, flip = 0;
   double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
+  double ref_temporal_error = 0;  // the reference's, between this frame and the one before; NaN on the first
   double brightness_error = 0;  // relative error of the mean luminance, linear HDR (eval/metrics.h)
   double umbra_rmse = 0;        // rmse over the frame's moving umbrae; NaN where it has none
   double gradient_share = 0;    // the share of the input's pixels that are gradient samples
@@ -106,8 +110,8 @@ using EvalProgress = std::function<void(int, int)>;
 
 struct EvalResult {
   std::vector<MetricsRow> rows;
-  // The last frame side by side, for a strip image: the 1-spp input, each method's display (default
-  // parameters only, not the sweeps), the reference.
+  // The last frame side by side, for a strip image: the 1-spp input, each method's display (every spec, in the
+  // order run), the reference.
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
@@ -123,12 +127,37 @@ RenderSettings reference_settings(const EvalConfig& config, int max_bounces = -1
 // The bounces a spec's method is measured with: its own max_bounces, else the run's.
 int spec_bounces(const MethodSpec& spec, const EvalConfig& config);
 
+// What run_eval renders, or takes from the cache: frames first_frame..last_frame of each of these sequences, at the
+// config's size. The plan of a run's renders (eval/render_plan.h) lists them from here too.
+struct EvalRenders {
+  // A sequence of 1-spp inputs: input_settings(config, bounces), with TRMV's shading term (kTrmvShadingSamples)
+  // when a method reads it (trmv), and with gradient samples made with `gradient` when the inputs carry them.
+  struct Input {
+    RenderSettings settings;
+    std::optional<GradientParams> gradient;
+  };
+  // Each input sequence: the run's first (config.max_bounces and config.gradient: every method's input but those
+  // of specs with max_bounces or gradient_<row> keys of their own), then each other one the specs' keys make, in
+  // the order of the specs. Inputs carry gradient samples all or none.
+  std::vector<Input> inputs;
+  // Each reference sequence, reference_settings(config, bounces): the run's bounces first, then the specs' own.
+  std::vector<RenderSettings> references;
+  // For each method, in the order of config.methods: its input sequence and its reference sequence (indices).
+  std::vector<size_t> method_input, method_reference;
+};
+// `methods`: the config's methods, made, in the order of config.methods; only what they read is asked.
+EvalRenders eval_renders(const EvalConfig& config, const std::vector<const Method*>& methods);
+
+// Throws rtdr::Error for a config run_eval refuses before it renders: frames outside 0..kMaxFrameIndex or out of
+// order, a size below the SSIM window, gradient parameters or bounces out of range.
+void check_eval_config(const EvalConfig& config);
+
 // Every method is made before the first frame is rendered, so a spec that cannot run (no Vulkan device, say) fails
 // at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
-// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, umbra_rmse, gradient_share,
-// ms_total, then one ms_<pass> column per pass
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, ref_temporal_error, brightness_error, umbra_rmse,
+// gradient_share, ms_total, then one ms_<pass> column per pass
 // of any method (empty where a method has no such pass). Written atomically.
 void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
 

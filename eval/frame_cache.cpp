@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
+#include <map>
 
 namespace rtdr {
 namespace fs = std::filesystem;
@@ -108,6 +108,8 @@ void FrameCache::store(const Attributes& key, const Frame& frame) {
   }
 }
 
+bool FrameCache::has(const Attributes& key) const { return load(key) != nullptr; }
+
 Frame FrameCache::get(int frame_index, int width, int height, const RenderSettings& settings, bool* hit) {
   const Attributes key = render_key(scene_, frame_index, width, height, settings);
   if (std::unique_ptr<Frame> cached = load(key)) {
@@ -123,27 +125,43 @@ Frame FrameCache::get(int frame_index, int width, int height, const RenderSettin
 std::vector<Frame> FrameCache::gradient_frames(int first, int last, int width, int height,
                                                const RenderSettings& settings, const GradientParams& params) {
   const auto key = [&](int f) { return render_key(scene_, f, width, height, settings, &params); };
-  const auto render = [&](int f, const Frame* prev) {
-    Frame frame = render_frame_with_gradients(scene_, f, width, height, settings, params, prev);
-    store(key(f), frame);
-    return frame;
+  std::map<int, Frame> held;  // by index: the frames found in the cache, then those rendered
+  const auto cached = [&](int f) {
+    std::unique_ptr<Frame> found = load(key(f));
+    if (found) held.emplace(f, std::move(*found));
+    return found != nullptr;
   };
-  std::vector<Frame> frames;
-  std::optional<Frame> prev;  // frame f - 1, once known
-  for (int f = first; f <= last; ++f) {
-    std::unique_ptr<Frame> cached = load(key(f));
-    if (!cached && !prev && f > 0) {
-      // Frame f needs f - 1: go back to the latest cached frame (or to the start) and render forward.
-      int from = f - 1;
-      std::unique_ptr<Frame> found;
-      while (from >= 0 && !(found = load(key(from)))) --from;
-      if (found) prev = std::move(*found);
-      for (int g = from + 1; g < f; ++g) prev = render(g, prev ? &*prev : nullptr);
+  for (const GradientRun& run : gradient_runs(first, last, cached)) {
+    for (int f = run.first; f <= run.last; ++f) {
+      // Frame f continues frame f - 1: the run's own, or the cached one before the run (none before frame 0).
+      const Frame* prev = f > 0 ? &held.at(f - 1) : nullptr;
+      Frame frame = render_frame_with_gradients(scene_, f, width, height, settings, params, prev);
+      store(key(f), frame);
+      held.emplace(f, std::move(frame));
+      if (f - 1 < first) held.erase(f - 1);  // a frame before the range, needed no more
     }
-    frames.push_back(cached ? std::move(*cached) : render(f, prev ? &*prev : nullptr));
-    prev = frames.back();
   }
+  std::vector<Frame> frames;
+  for (int f = first; f <= last; ++f) frames.push_back(std::move(held.at(f)));
   return frames;
+}
+
+std::vector<GradientRun> gradient_runs(int first, int last, const std::function<bool(int)>& cached) {
+  std::vector<GradientRun> runs;
+  for (int f = first; f <= last; ++f) {
+    if (cached(f)) continue;
+    if (!runs.empty() && runs.back().last == f - 1) {  // the run goes on
+      runs.back().last = f;
+      continue;
+    }
+    // A new run: frame f - 1 is cached, unless f is the first frame asked for; then go back to the latest frame
+    // the cache holds, or to frame 0, and render forward from there.
+    int start = f;
+    if (f == first)
+      while (start > 0 && !cached(start - 1)) --start;
+    runs.push_back({start, f});
+  }
+  return runs;
 }
 
 }  // namespace rtdr

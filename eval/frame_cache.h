@@ -14,6 +14,10 @@
 // whole or not at all, even when the run is killed; a later run removes what a dead one left. A read-only cache is
 // read, and what it lacks is rendered without being stored (one warning). A write that fails otherwise (a full
 // disk) fails the run with the reason and leaves no partial entry.
+//
+// The cache is also the contract with a cluster (docs/scaling.md): `rtdr eval --plan` (eval/render_plan.h) lists the
+// frames `has` finds missing, in the jobs `gradient_runs` cuts, and workers move frames of `rtdr render` into their
+// entries' paths.
 #pragma once
 
 #include "core/atomic_file.h"
@@ -23,11 +27,24 @@
 #include "trace/render_frame.h"
 #include "trace/render_key.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace rtdr {
+
+// One run of a gradient sequence to render: frames first..last, each from the one before; frame first - 1 is in
+// the cache (or first is 0).
+struct GradientRun {
+  int first, last;
+};
+
+// The runs to render for frames first..last of a gradient sequence, given which frames the cache holds
+// (`cached(f)`, asked at most once per frame): the longest runs of frames it lacks, where the run holding `first`
+// starts after the latest earlier frame it holds (or at frame 0), since frame f needs frame f - 1. What
+// FrameCache::gradient_frames renders, and the dependent jobs of a plan.
+std::vector<GradientRun> gradient_runs(int first, int last, const std::function<bool(int)>& cached);
 
 class FrameCache {
  public:
@@ -44,6 +61,9 @@ class FrameCache {
                                      const GradientParams& params);
   // Where the entry of the frame with this render key lives (trace/render_key.h render_key).
   std::string path(const Attributes& key) const;
+  // Whether the entry of `key` is there and valid: what `get` would return without rendering (a warning when it
+  // is there but not valid, as `get` gives).
+  bool has(const Attributes& key) const;
 
  private:
   // The entry of `key` when it is there and valid; otherwise nullptr, after a warning when it was there but not

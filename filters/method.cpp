@@ -58,6 +58,10 @@ constexpr const char* kTrmv = "trmv";
 
 }  // namespace
 
+Probe Method::probe(const std::string& pass, int x, int y, const std::string& stream, int level) const {
+  return log_.probe(pass, stream, level, x, y);
+}
+
 double Method::time_pass(const std::string& pass, const std::function<void()>& run) {
   const auto start = std::chrono::steady_clock::now();
   run();
@@ -75,6 +79,14 @@ InputChannels common_input_channels(const std::vector<std::string>& illumination
   for (const char* channel : {"emission.R", "emission.G", "emission.B", "indirect.R", "indirect.G", "indirect.B"})
     c.defaults[channel] = 0.0f;
   return c;
+}
+
+std::string missing_layer_fix(const std::string& layer) {
+  if (layer == "gradient")  // trace/gradients.h
+    return "render the frames with `rtdr render --gradients` (A-SVGF's gradient samples)";
+  if (layer == "direct.shading")  // trace/shading.h; kTrmvShadingSamples is what rtdr eval renders
+    return "render the frames with `rtdr render --shading-samples N` (TRMV's shading term; rtdr eval uses 64)";
+  return "";
 }
 
 void fill_input_defaults(Frame& frame, const InputChannels& channels) {
@@ -117,7 +129,7 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     options.taa_params = params.taa;
     return options;
   }
-  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines and has no Vulkan port yet");
+  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines (its filter: filters/trmv/trmv.h)");
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);

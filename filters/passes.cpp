@@ -3,6 +3,8 @@
 
 #include "core/error.h"
 
+#include <algorithm>
+
 namespace rtdr {
 
 const std::vector<PassDecl>& filter_passes() {
@@ -120,6 +122,16 @@ const PassDecl& find_pass(std::string_view name) {
     known += (known.empty() ? "" : ", ") + std::string(pass.name);
   }
   throw Error("there is no pass '" + std::string(name) + "' (passes: " + known + ")");
+}
+
+std::vector<std::string> dump_channels_of(const std::vector<PassUse>& passes, const std::vector<std::string>& streams) {
+  std::vector<std::string> channels;
+  for (const PassUse& use : passes)
+    for (const LayerDecl* layer : use.pass->writes)
+      if (layer->use == LayerUse::Dump)
+        for (std::string& channel : expand_layer(*layer, use.levels, streams))
+          if (std::find(channels.begin(), channels.end(), channel) == channels.end()) channels.push_back(std::move(channel));
+  return channels;
 }
 
 std::string layer_name(const LayerDecl& layer, std::string_view stream, int level) {

@@ -175,6 +175,17 @@ struct PassDecl {
 
 // Every pass of every method, in the order a frame runs them.
 const std::vector<PassDecl>& filter_passes();
+
+// One entry of a method's list of passes: the pass, and how many levels of it run (for PassScope::StreamLevel).
+// A method is such a list, in the order its frame runs them (svgf_passes, trmv_passes).
+struct PassUse {
+  const PassDecl* pass;
+  int levels = 0;
+};
+// Every channel of the dump of a method whose passes are `passes`: each pass's dump layers for `streams` and its
+// levels, each channel once. What both back ends of the method dump (Method::dump_channels).
+std::vector<std::string> dump_channels_of(const std::vector<PassUse>& passes,
+                                          const std::vector<std::string>& streams = {"direct", "indirect"});
 // The declaration of pass `name`; throws rtdr::Error listing the passes when there is none.
 const PassDecl& find_pass(std::string_view name);
 

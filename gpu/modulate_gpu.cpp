@@ -32,7 +32,7 @@ RgbPlane remodulate_vulkan(VulkanContext& context, const RgbPlane& direct, const
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
         shaders.modulate(batch, *illumination, *albedo_buffer, *emission_buffer, *colour_buffer,
-                         ModulatePush{.width = uint32_t(w), .height = uint32_t(h)});
+                         modulate_push(uint32_t(w), uint32_t(h)));
       },
       ms);
   return unpack_rgb(*colour_buffer, w, h);

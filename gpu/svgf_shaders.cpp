@@ -107,6 +107,59 @@ AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfPar
                     .keep_prefiltered = keep_prefiltered ? 1u : 0u};
 }
 
+ModulatePush modulate_push(uint32_t width, uint32_t height) { return ModulatePush{.width = width, .height = height}; }
+
+TonemapPush tonemap_push(uint32_t width, uint32_t height, const TonemapParams& params) {
+  return TonemapPush{.width = width, .height = height, .exposure = params.exposure};
+}
+
+TaaPush taa_push(uint32_t width, uint32_t height, const TaaParams& params, const TaaJitter& jitter, bool has_history) {
+  return TaaPush{.width = width,
+                 .height = height,
+                 .alpha = params.alpha,
+                 .clip_history = params.clip_history ? 1u : 0u,
+                 .jitter_current = jitter.current,
+                 .jitter_previous = jitter.previous,
+                 .has_history = has_history ? 1u : 0u,
+                 .padding = 0};
+}
+
+TrmvTemporalPush trmv_temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                                    bool has_valid, bool has_reshaded, bool has_alpha, const TrmvParams& params) {
+  return TrmvTemporalPush{.width = width,
+                          .height = height,
+                          .prev_width = prev_width,
+                          .prev_height = prev_height,
+                          .has_history = prev_width > 0 ? 1u : 0u,
+                          .has_valid = has_valid ? 1u : 0u,
+                          .has_reshaded = has_reshaded ? 1u : 0u,
+                          .has_alpha = has_alpha ? 1u : 0u,
+                          .alpha = params.alpha,
+                          .clamp_gamma = params.clamp_gamma,
+                          .clamp_radius = params.clamp_radius};
+}
+
+TrmvCleanupPush trmv_cleanup_push(uint32_t width, uint32_t height, bool has_alpha_v, const TrmvParams& params) {
+  return TrmvCleanupPush{.width = width,
+                         .height = height,
+                         .has_alpha_v = has_alpha_v ? 1u : 0u,
+                         .alpha = params.alpha,
+                         .cleanup_eps = params.cleanup_eps,
+                         .cleanup_sigma_max = params.cleanup_sigma_max};
+}
+
+TrmvFalloffPush trmv_falloff_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                                  bool has_valid, const TrmvParams& params) {
+  return TrmvFalloffPush{.width = width,
+                         .height = height,
+                         .prev_width = prev_width,
+                         .prev_height = prev_height,
+                         .has_prev = prev_width > 0 ? 1u : 0u,
+                         .has_valid = has_valid ? 1u : 0u,
+                         .alpha = params.alpha,
+                         .falloff_sigma = params.falloff_sigma};
+}
+
 SvgfShaders::SvgfShaders(VulkanContext& context)
     : group_width_(context.cpu_device() ? kSvgfCpuGroupSizeX : kSvgfGroupSizeX),
       group_height_(context.cpu_device() ? kSvgfCpuGroupSizeY : kSvgfGroupSizeY),

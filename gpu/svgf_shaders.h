@@ -12,13 +12,16 @@
 #include "filters/svgf/svgf_params.h"
 #include "filters/svgf/modulate_shared.h"
 #include "filters/svgf/temporal_shared.h"
+#include "filters/svgf/tonemap.h"
 #include "filters/svgf/tonemap_shared.h"
 #include "filters/svgf/variance_shared.h"
+#include "filters/taa/taa.h"
 #include "filters/taa/taa_shared.h"
 #include "filters/trmv/cleanup_shared.h"
 #include "filters/trmv/falloff_shared.h"
 #include "filters/trmv/spatial_shared.h"
 #include "filters/trmv/temporal_shared.h"
+#include "filters/trmv/trmv_params.h"
 #include "gpu/compute.h"
 
 #include <cstdint>
@@ -105,6 +108,18 @@ AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfPar
 // spatial filter's sigma everywhere, or each pixel's own std (`sigma_plane`, the clean-up's).
 TrmvSpatialPush trmv_spatial_push(int width, int height, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
                                   const SvgfParams& edges);
+// The other ports' push constants, one function per block likewise, which the pipelines (svgf_vulkan.cpp,
+// trmv_vulkan.cpp) and the per-pass ports (modulate_gpu.cpp, tonemap_gpu.cpp, taa_gpu.cpp, trmv_*_gpu.cpp) all
+// call. A previous frame of 0 x 0 means none: no history (TRMV's temporal pass and falloff, and TAA with
+// `has_history`). The `has_*` flags say which optional planes the dispatch binds (filters/trmv/*_shared.h).
+ModulatePush modulate_push(uint32_t width, uint32_t height);
+TonemapPush tonemap_push(uint32_t width, uint32_t height, const TonemapParams& params);
+TaaPush taa_push(uint32_t width, uint32_t height, const TaaParams& params, const TaaJitter& jitter, bool has_history);
+TrmvTemporalPush trmv_temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                                    bool has_valid, bool has_reshaded, bool has_alpha, const TrmvParams& params);
+TrmvCleanupPush trmv_cleanup_push(uint32_t width, uint32_t height, bool has_alpha_v, const TrmvParams& params);
+TrmvFalloffPush trmv_falloff_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
+                                  bool has_valid, const TrmvParams& params);
 
 // Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
 // then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).

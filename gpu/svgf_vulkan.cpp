@@ -250,9 +250,8 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
     d->copy(batch_, *filtered, [w, h, ds](const GpuBuffer& r, Frame& f) {
       for (const int s : ds.streams) dump_layer(&f, layers::kFiltered, ds.name[s], -1, unpack_illumination(r, w, h, s));
     });
-  shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, ModulatePush{.width = uw, .height = uh});
-  shaders_.tonemap(batch_, *b.colour, *b.tonemapped,
-                   TonemapPush{.width = uw, .height = uh, .exposure = options_.tonemap.exposure});
+  shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, modulate_push(uw, uh));
+  shaders_.tonemap(batch_, *b.colour, *b.tonemapped, tonemap_push(uw, uh, options_.tonemap));
   if (d)
     d->copy(batch_, *b.tonemapped, [w, h](const GpuBuffer& r, Frame& f) {
       dump_layer(&f, layers::kTonemapped, {}, -1, unpack_rgb(r, w, h));
@@ -260,14 +259,7 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   // Without a TAA history the TAA shader returns its input: the first frame's display is the tone-mapped colour.
   const TaaParams& t = options_.taa_params;
   shaders_.taa(batch_, *b.tonemapped, *b.display[prev], *b.motion, *b.display[cur],
-               TaaPush{.width = uw,
-                       .height = uh,
-                       .alpha = t.alpha,
-                       .clip_history = t.clip_history ? 1u : 0u,
-                       .jitter_current = {0.0f, 0.0f},
-                       .jitter_previous = {0.0f, 0.0f},
-                       .has_history = has_history ? 1u : 0u,
-                       .padding = 0});
+               taa_push(uw, uh, t, TaaJitter{}, has_history));
   // The results into readback memory: on a GPU the host reads device memory across the bus, uncached.
   batch_.copy(*b.colour, *b.colour_readback, kTransferPass);
   batch_.copy(*b.display[cur], *b.display_readback, kTransferPass);

@@ -32,14 +32,7 @@ RgbPlane taa_vulkan(VulkanContext& context, const RgbPlane& current, const RgbPl
   if (has_history) pack_rgb(history, *history_buffer);
   pack_vec2(motion, *motion_buffer);
 
-  const TaaPush push{.width = uint32_t(w),
-                     .height = uint32_t(h),
-                     .alpha = params.alpha,
-                     .clip_history = params.clip_history ? 1u : 0u,
-                     .jitter_current = jitter.current,
-                     .jitter_previous = jitter.previous,
-                     .has_history = has_history ? 1u : 0u,
-                     .padding = 0};
+  const TaaPush push = taa_push(uint32_t(w), uint32_t(h), params, jitter, has_history);
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {

@@ -20,8 +20,7 @@ RgbPlane tonemap_vulkan(VulkanContext& context, const RgbPlane& colour, const To
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) {
         shaders.tonemap(batch, *colour_buffer, *display_buffer,
-                        TonemapPush{.width = uint32_t(colour.width), .height = uint32_t(colour.height),
-                                    .exposure = params.exposure});
+                        tonemap_push(uint32_t(colour.width), uint32_t(colour.height), params));
       },
       ms);
   return unpack_rgb(*display_buffer, colour.width, colour.height);

@@ -47,14 +47,7 @@ TrmvFalloffOutput trmv_falloff_vulkan(VulkanContext& context, const TrmvReceiver
   // (theta, alpha^V) per pixel.
   const auto theta_alpha = plane_buffer(context, w, h, TexelFormat::RG32F);
 
-  const TrmvFalloffPush push{.width = uint32_t(w),
-                             .height = uint32_t(h),
-                             .prev_width = uint32_t(pw),
-                             .prev_height = uint32_t(ph),
-                             .has_prev = has_prev ? 1u : 0u,
-                             .has_valid = has_valid ? 1u : 0u,
-                             .alpha = params.alpha,
-                             .falloff_sigma = params.falloff_sigma};
+  const TrmvFalloffPush push = trmv_falloff_push(uint32_t(w), uint32_t(h), uint32_t(pw), uint32_t(ph), has_valid, params);
   const TrmvFalloffPlanes planes{position.get(), normal.get(),        mesh.get(),     motion.get(),
                                  valid.get(),    prev_position.get(), prev_mesh.get()};
   run_pass(

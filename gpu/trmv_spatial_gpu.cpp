@@ -90,12 +90,7 @@ TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporal
              filtered = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              weights = plane_buffer(context, w, h, TexelFormat::RGBA32F);
 
-  const TrmvCleanupPush push{.width = uint32_t(w),
-                             .height = uint32_t(h),
-                             .has_alpha_v = has_alpha_v ? 1u : 0u,
-                             .alpha = params.alpha,
-                             .cleanup_eps = params.cleanup_eps,
-                             .cleanup_sigma_max = params.cleanup_sigma_max};
+  const TrmvCleanupPush push = trmv_cleanup_push(uint32_t(w), uint32_t(h), has_alpha_v, params);
   // Eq. 7-8 at every pixel, then the 9x9 separable joint bilateral with each pixel's std (trmv_cleanup_pass).
   const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges);
   const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges);

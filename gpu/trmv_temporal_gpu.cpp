@@ -62,17 +62,8 @@ TrmvTemporalOutput trmv_temporal_vulkan(VulkanContext& context, const RgbPlane& 
              fetched = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              clamped = plane_buffer(context, w, h, TexelFormat::RGBA32F);
 
-  const TrmvTemporalPush push{.width = uint32_t(w),
-                              .height = uint32_t(h),
-                              .prev_width = uint32_t(pw),
-                              .prev_height = uint32_t(ph),
-                              .has_history = has_history ? 1u : 0u,
-                              .has_valid = has_valid ? 1u : 0u,
-                              .has_reshaded = has_reshaded ? 1u : 0u,
-                              .has_alpha = has_alpha ? 1u : 0u,
-                              .alpha = params.alpha,
-                              .clamp_gamma = params.clamp_gamma,
-                              .clamp_radius = params.clamp_radius};
+  const TrmvTemporalPush push = trmv_temporal_push(uint32_t(w), uint32_t(h), uint32_t(pw), uint32_t(ph), has_valid,
+                                                   has_reshaded, has_alpha, params);
   const TrmvTemporalPlanes planes{filtered_buffer.get(), mesh_buffer.get(), motion_buffer.get(),
                                   valid_buffer.get(),    reshaded_buffer.get(), prev_color.get(),
                                   prev_mesh.get(),       alpha_buffer.get()};

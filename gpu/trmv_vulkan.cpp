@@ -135,26 +135,12 @@ void TrmvVulkan::record_components(const GpuBuffer* alpha_v) {
                                 b.mesh[prev].get(),
                                 alpha ? alpha : b.no_pairs.get()};
     shaders_.trmv_temporal(batch_, in, temporal(k), *b.fetched[k], *b.clamped[k],
-                           TrmvTemporalPush{.width = uint32_t(w),
-                                            .height = uint32_t(h),
-                                            .prev_width = has_history ? uint32_t(w) : 0u,
-                                            .prev_height = has_history ? uint32_t(h) : 0u,
-                                            .has_history = has_history ? 1u : 0u,
-                                            .has_valid = 0u,
-                                            .has_reshaded = reshaded ? 1u : 0u,
-                                            .has_alpha = alpha ? 1u : 0u,
-                                            .alpha = p.alpha,
-                                            .clamp_gamma = p.clamp_gamma,
-                                            .clamp_radius = p.clamp_radius});
+                           trmv_temporal_push(uint32_t(w), uint32_t(h), has_history ? uint32_t(w) : 0u,
+                                              has_history ? uint32_t(h) : 0u, false, reshaded, alpha != nullptr, p));
     // 4. The clean-up's strength, as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8]; alpha^V rides in the
     //    fetched history's w.
     shaders_.trmv_cleanup(batch_, temporal(k), *b.fetched[k], *b.clamped[k], *b.color_sigma[k], *b.weights[k],
-                          TrmvCleanupPush{.width = uint32_t(w),
-                                          .height = uint32_t(h),
-                                          .has_alpha_v = alpha ? 1u : 0u,
-                                          .alpha = p.alpha,
-                                          .cleanup_eps = p.cleanup_eps,
-                                          .cleanup_sigma_max = p.cleanup_sigma_max});
+                          trmv_cleanup_push(uint32_t(w), uint32_t(h), alpha != nullptr, p));
   }
   // Then its 9x9 bilateral with each pixel's std, the three components side by side.
   const int radius = (p.cleanup_size - 1) / 2;
@@ -232,14 +218,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
                                    b.motion[kVisibility].get(), b.shadow_valid.get(), b.position[cur ^ 1].get(),
                                    b.mesh[cur ^ 1].get()};
     shaders_.trmv_falloff(batch_, planes, *b.falloff,
-                          TrmvFalloffPush{.width = uw,
-                                          .height = uh,
-                                          .prev_width = has_prev ? uw : 0u,
-                                          .prev_height = has_prev ? uh : 0u,
-                                          .has_prev = has_prev ? 1u : 0u,
-                                          .has_valid = 1u,
-                                          .alpha = p.alpha,
-                                          .falloff_sigma = p.falloff_sigma});
+                          trmv_falloff_push(uw, uh, has_prev ? uw : 0u, has_prev ? uh : 0u, true, p));
   }
   record_components(shadow ? b.falloff.get() : nullptr);
   batch_.run(submits_);

@@ -1,6 +1,7 @@
 // `rtdr eval` (app/cmd_eval.cpp, app/backend.cpp's SpecMethods) as a user meets it, running the real binary
 // (RTDR_EXE): bad method specs give one line on stderr, a non-zero exit and nothing rendered or written; with
-// backend=vulkan in a spec, the shader ports run beside the golden passes and are measured by the same metrics.
+// backend=vulkan in a spec, the shader ports run beside the golden passes and are measured by the same metrics;
+// --plan writes the jobs of the run's renders (eval/render_plan.h) and nothing else.
 //
 // Bound on the ports' RMSE (the Vulkan test below). The pipeline's colour c' is within d of the golden colour c
 // per channel, relative to max(|c|, f) with f = 1e-2: d = 2e-3 with fp32 illumination records and 2e-2 with fp16
@@ -18,11 +19,13 @@
 #include "test_skip.h"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -80,6 +83,46 @@ TEST_CASE("rtdr eval: a bad method spec gives one line before anything is render
     CHECK(files_in(dir / "cache").empty());
     CHECK(files_in(dir / "out").empty());
   }
+}
+
+TEST_CASE("rtdr eval --plan writes one rtdr render job per line, with this rtdr's path, and renders nothing") {
+  const fs::path dir = scratch("plan");
+  const fs::path cache = dir / "cache", out = dir / "out", plan = dir / "plan.jsonl";
+  // A port's spec is planned from its golden method's inputs: no device is opened.
+  const RunResult r = run_rtdr("eval --scene pillars --methods svgf,asvgf:backend=vulkan --frames 0-1 --size 24x16 "
+                               "--ref-spp 2 --cache " + cache.string() + " --out " + out.string() + " --plan " +
+                                   plan.string(), dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::StartsWith("wrote 3 job(s) to " + plan.string()));
+  std::istringstream lines(read_text(plan));
+  std::vector<nlohmann::json> jobs;
+  for (std::string line; std::getline(lines, line);) jobs.push_back(nlohmann::json::parse(line));
+  REQUIRE(jobs.size() == 3);  // the references of frames 0 and 1, and the run of gradient frames 0-1
+  for (const nlohmann::json& job : jobs) {
+    CHECK(job.at("argv").at(0) == fs::canonical(RTDR_EXE).string());
+    CHECK(job.at("argv").at(1) == "render");
+  }
+  CHECK(jobs[2].at("dependent") == true);
+  CHECK(jobs[2].at("frames") == nlohmann::json::array({0, 1}));
+  CHECK_FALSE(fs::exists(cache));  // nothing rendered
+  CHECK(files_in(dir) == std::set<std::string>{"plan.jsonl", "stderr.txt", "stdout.txt"});  // no temporary left
+}
+
+TEST_CASE("rtdr eval --plan is refused without a cache, and into a folder that does not exist, leaving no file") {
+  const fs::path dir = scratch("plan_refused");
+  const std::vector<std::string> run = {"eval", "--scene", "pillars", "--methods", "svgf", "--frames", "0-1",
+                                        "--size", "24x16", "--ref-spp", "2", "--out", (dir / "out").string()};
+  std::vector<std::string> no_cache = run, no_folder = run;
+  no_cache.insert(no_cache.end(), {"--cache", "", "--plan", (dir / "plan.jsonl").string()});
+  no_folder.insert(no_folder.end(),
+                   {"--cache", (dir / "cache").string(), "--plan", (dir / "no" / "plan.jsonl").string()});
+  for (const auto& args : {no_cache, no_folder}) {
+    const RunResult r = run_rtdr_args(args, dir);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::StartsWith("rtdr: error: "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK(files_in(dir) == std::set<std::string>{"stderr.txt", "stdout.txt"});
 }
 
 TEST_CASE("rtdr eval runs svgf on the shader ports beside the golden passes, within the pipeline's bound") {
@@ -157,4 +200,62 @@ TEST_CASE("rtdr eval runs asvgf and trmv on the shader ports beside the golden p
       CHECK(rmse_port != 0.0);
       CHECK(std::abs(rmse_port - rmse) <= guard * (rmse + 1e-2));
     }
+}
+
+TEST_CASE("rtdr eval --help lists the method names, and no help text says a port runs svgf alone") {
+  const fs::path dir = scratch("help");
+  const RunResult eval = run_rtdr("eval --help", dir);
+  REQUIRE(eval.exit_code == 0);
+  for (const std::string& name : rtdr::method_names()) CHECK_THAT(eval.out, Catch::Contains(name));
+  CHECK_THAT(eval.out, Catch::Contains("svgf, asvgf, a-eaw, accum, eaw, eaw-accum, none, trmv"));
+  CHECK_THAT(eval.out, !Catch::Contains("runs svgf on the"));
+  const RunResult compare = run_rtdr("compare --help", dir);
+  REQUIRE(compare.exit_code == 0);
+  CHECK_THAT(compare.out, !Catch::Contains("run SVGF") && Catch::Contains("svgf, asvgf or trmv"));
+}
+
+// A file name is the user's text, never TeX. The scene `$\sqrt$.gltf` (pillars, copied) names
+// the charts' titles; matplotlib would read "$\sqrt$" as mathtext and fail after all the rendering.
+TEST_CASE("rtdr eval: a scene file named with TeX in it gives its charts, its name shown as written") {
+  const fs::path dir = scratch("tex_name");
+  const fs::path scene = dir / "$\\sqrt$.gltf";
+  fs::copy_file(fs::path(RTDR_SOURCE_DIR) / "scenes/pillars.gltf", scene);
+  const fs::path out = dir / "out";
+  const RunResult r = run_rtdr_args({"eval", "--scene", scene.string(), "--methods", "accum,none", "--frames", "0-2",
+                                     "--size", "24x14", "--ref-spp", "2", "--cache", "", "--out", out.string()},
+                                    dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(files_in(out) == std::set<std::string>{"error_over_frames.png", "metrics.csv", "speed_vs_accuracy.png",
+                                               "strip.png", "temporal_error.png"});
+}
+
+// strip.png (eval/strip.py) shows every method that ran, parameters included, and none's tile is the input's.
+TEST_CASE("rtdr eval: the strip shows each method that ran once, up to --strip-max, and bad strip options fail early") {
+  const fs::path dir = scratch("strip");
+  const std::string base = "eval --scene pillars --frames 0-1 --size 24x14 --ref-spp 2 --cache " +
+                           (dir / "cache").string() + " --methods none,accum,accum:alpha=0.5";
+  const RunResult r = run_rtdr(base + " --out " + (dir / "all").string(), dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("strip.png, in reading order: | 1 spp input (= none) | accum | accum:alpha=0.5 | "
+                                    "reference 2 spp\n"));
+  const RunResult capped = run_rtdr(base + " --strip-max 1 --strip-crop 0,0,12,12 --out " + (dir / "one").string(), dir);
+  REQUIRE(capped.exit_code == 0);
+  CHECK_THAT(capped.out, Catch::Contains("strip.png shows the first 1 of the 2 methods") &&
+                             Catch::Contains("in reading order: | 1 spp input (= none) | accum | reference"));
+  const RunResult chosen = run_rtdr(base + " --strip accum:alpha=0.5 --out " + (dir / "chosen").string(), dir);
+  REQUIRE(chosen.exit_code == 0);
+  CHECK_THAT(chosen.out, Catch::Contains("in reading order: | 1 spp input (= none) | accum:alpha=0.5 | reference"));
+  // Refused before anything is rendered: nothing in the fresh cache, no output.
+  for (const std::string bad : {"--strip-crop 20,0,8,8", "--strip-crop 1,2,3", "--strip svgf", "--chart-metrics psnr"}) {
+    INFO(bad);
+    const fs::path cache = dir / "bad_cache";
+    const RunResult b = run_rtdr("eval --scene pillars --frames 0-1 --size 24x14 --methods accum " + bad + " --cache " +
+                                     cache.string() + " --out " + (dir / "bad").string(), dir);
+    CHECK(b.exit_code == 1);
+    CHECK(std::count(b.err.begin(), b.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "bad"));
+    CHECK(files_in(cache).empty());
+  }
 }

@@ -55,7 +55,8 @@ SOURCE_EXTENSIONS = ["h", "cpp", "comp", "glsl", "py", "sh", "md", "ipynb"]
 
 # Programs whose flags are their own: a flag after one of these names on its line is not checked (rule 3).
 FOREIGN_PROGRAMS = ["cmake", "ctest", "git", "glslc", "jupyter-nbconvert", "jupyter", "nbconvert", "valgrind",
-                    "callgrind_annotate", "apt-get", "apt", "nvidia-smi", "ninja", "clang", "clang++", "pip"]
+                    "callgrind_annotate", "apt-get", "apt", "nvidia-smi", "ninja", "clang", "clang++", "pip",
+                    "dask", "dask-scheduler", "dask-worker", "sbatch", "SBATCH"]
 
 # References to what only the team has, outside the repository (rule 4). "a level issues 36 loads" is a verb.
 OUTSIDE = [

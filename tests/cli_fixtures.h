@@ -7,6 +7,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -106,6 +107,14 @@ inline std::vector<std::string> csv_cells(const std::string& line) {
   for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
   if (!line.empty() && line.back() == ',') cells.push_back("");
   return cells;
+}
+
+// A file's identity on disk, (device, inode); (0, 0) when it does not exist. A file written again, by a rename
+// over it, has a new one: so a test tells a frame the cache read from one it rendered and stored again.
+inline std::pair<uint64_t, uint64_t> file_id(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return {0, 0};
+  return {uint64_t(st.st_dev), uint64_t(st.st_ino)};
 }
 
 // The names of the files in `dir` (none when it does not exist).

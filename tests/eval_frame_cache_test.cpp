@@ -1,6 +1,7 @@
 // eval/frame_cache.h: an entry is found by the whole render key, however long the scene's name; an entry is used
 // only when its header holds that key, its planes their checksum and every float is finite, and is rendered again
-// otherwise; writes are staged inside the cache and appear whole; what a dead run staged is removed.
+// otherwise; writes are staged inside the cache and appear whole; what a dead run staged is removed; a gradient
+// sequence is rendered in the runs gradient_runs cuts, which a plan's jobs follow (eval/render_plan.h).
 #include "eval/frame_cache.h"
 
 #include "cli_fixtures.h"
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 
 namespace fs = std::filesystem;
 using namespace rtdr;
@@ -178,4 +180,50 @@ TEST_CASE("cache writes are staged inside the cache, appear whole, and what a de
   const std::set<std::string> entries = tree(dir);
   REQUIRE(entries.size() == 2);
   CHECK_THAT(*entries.rbegin(), Catch::EndsWith("frame_0000.exr"));
+}
+
+TEST_CASE("gradient_runs cuts a gradient sequence where the cache must render it, asking once per frame") {
+  // The frames the cache holds, and how often each was asked about.
+  std::set<int> held;
+  std::map<int, int> asked;
+  const auto runs = [&](int first, int last) {
+    asked.clear();
+    std::vector<std::pair<int, int>> out;
+    for (const GradientRun& r : gradient_runs(first, last, [&](int f) { return ++asked[f], held.count(f) > 0; }))
+      out.push_back({r.first, r.last});
+    for (const auto& [f, n] : asked) CHECK(n == 1);
+    return out;
+  };
+  using Runs = std::vector<std::pair<int, int>>;
+  held = {};
+  CHECK(runs(0, 4) == Runs{{0, 4}});
+  CHECK(runs(3, 5) == Runs{{0, 5}});  // frame 3 needs 2, 1 and 0: rendered from the start
+  held = {0, 1, 2, 3, 4, 5};
+  CHECK(runs(2, 5).empty());
+  CHECK(asked.size() == 4);  // a warm range asks nothing before it
+  held = {0, 1, 2, 4, 5};
+  CHECK(runs(2, 5) == Runs{{3, 3}});  // a hole: frame 3 from the cached 2; 4 and 5 are kept
+  held = {1, 4};
+  CHECK(runs(3, 7) == Runs{{2, 3}, {5, 7}});  // back to the latest cached frame before the range, then after 4
+  held = {0, 5};
+  CHECK(runs(2, 3) == Runs{{1, 3}});
+}
+
+TEST_CASE("gradient_frames renders what gradient_runs lists, each frame from the one before, and keeps the rest") {
+  const fs::path dir = scratch("gradient_frames");
+  const Scene scene = load_scene("pillars");
+  FrameCache cache(dir.string(), scene);
+  const GradientParams params;
+  const auto entry = [&](int f) { return cache.path(render_key(scene, f, 16, 12, {}, &params)); };
+  const std::vector<Frame> cold = cache.gradient_frames(2, 4, 16, 12, {}, params);  // renders 0 to 4
+  for (int f = 0; f <= 4; ++f) REQUIRE(fs::exists(entry(f)));
+  fs::remove(entry(3));
+  const auto kept2 = cli::file_id(entry(2)), kept4 = cli::file_id(entry(4));
+  const std::vector<Frame> again = cache.gradient_frames(2, 4, 16, 12, {}, params);
+  CHECK(cli::file_id(entry(2)) == kept2);  // read, not rendered
+  CHECK(cli::file_id(entry(4)) == kept4);
+  REQUIRE(fs::exists(entry(3)));  // rendered from the cached frame 2: the same frame as from the start
+  REQUIRE(again.size() == 3);
+  for (size_t k = 0; k < 3; ++k)
+    CHECK(again[k].attributes.at("rtdr.checksum") == cold[k].attributes.at("rtdr.checksum"));
 }

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages RTDR needs (only the missing ones), then configures and builds build/.
+# Installs the Debian 12 packages RTDR needs (only the missing ones), then configures and builds build/: every
+# target, or only those named (`bash tools/setup.sh rtdr`: the command alone, as tools/demo.sh builds it).
 # Idempotent: when everything is installed and built it only runs an up-to-date check of the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,9 +14,15 @@ PACKAGES=(
   libvulkan-dev glslc spirv-tools mesa-vulkan-drivers vulkan-validationlayers
   # Charts and notebooks run on Debian's Python (/usr/bin/python3), not whatever python3 is on PATH.
   python3-numpy python3-matplotlib python3-openimageio python3-skimage jupyter-nbconvert python3-ipykernel
+  # tools/farm.py: the render jobs of `rtdr eval --plan` on a Dask cluster (docs/scaling.md).
+  python3-distributed
 )
 
 bash tools/install_missing.sh setup "${PACKAGES[@]}"
 
 [ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build
+if (($#)); then
+  cmake --build build --target "$@"
+else
+  cmake --build build
+fi

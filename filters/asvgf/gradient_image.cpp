@@ -125,17 +125,26 @@ GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, con
   return g;
 }
 
-int frame_stratum_size(const Frame& frame, const std::string& method) {
+std::string stratum_size_problem(const Frame& frame, int* s) {
   const auto it = frame.attributes.find("rtdr.gradient.stratum_size");
   if (it == frame.attributes.end())
-    throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
-                " needs frames rendered with gradient samples (rtdr render --gradients): no "
-                "rtdr.gradient.stratum_size");
-  int s = 0;
+    return "no header attribute rtdr.gradient.stratum_size: not rendered with gradient samples (rtdr render "
+           "--gradients)";
+  int size = 0;
   const char *first = it->second.data(), *last = first + it->second.size();
-  const auto [end, ec] = std::from_chars(first, last, s);
-  if (ec != std::errc() || end != last || s < 1 || s > 64)
-    throw Error(frame.source + ": rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)");
+  const auto [end, ec] = std::from_chars(first, last, size);
+  if (ec != std::errc() || end != last || size < 1 || size > 64)
+    return "rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)";
+  if (s) *s = size;
+  return "";
+}
+
+int frame_stratum_size(const Frame& frame, const std::string& method) {
+  int s = 0;
+  const std::string problem = stratum_size_problem(frame, &s);
+  if (!problem.empty())
+    throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
+                " reads gradient samples: " + problem);
   return s;
 }
 

@@ -92,6 +92,9 @@ GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, con
 // (rtdr.gradient.stratum_size, trace/gradients.h) [ASVGF18 Sec. 3.3]. Throws rtdr::Error naming the frame and
 // `method` when it is missing or not a stratum size (1 to 64).
 int frame_stratum_size(const Frame& frame, const std::string& method);
+// The same rule as a problem for filters/input_check.h: "" when the header holds a stratum size (then *s is set
+// to it), else what is wrong, without the frame's name.
+std::string stratum_size_problem(const Frame& frame, int* s);
 
 // A per-stratum plane replicated to the frame's pixels (pixel (x, y) takes stratum (x / s, y / s)), so that
 // dumps stay frame-sized layers.

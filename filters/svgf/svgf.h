@@ -21,6 +21,7 @@
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
 
+#include <deque>
 #include <optional>
 
 namespace rtdr {
@@ -61,8 +62,8 @@ OneStream one_stream(const Frame& in, bool adaptive);
 // the same (gpu/svgf_vulkan.h).
 InputChannels svgf_input_channels(const SvgfOptions& options);
 // The passes a filter with `options` runs, in order (declared in filters/passes.h), and every channel its
-// dump holds: each pass's dump layers for both streams and every level it runs.
-std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options);
+// dump holds: each pass's dump layers for each stream (svgf_streams) and every level it runs.
+std::vector<PassUse> svgf_passes(const SvgfOptions& options);
 std::vector<std::string> svgf_dump_channels(const SvgfOptions& options);
 
 class SvgfFilter : public Method {
@@ -71,7 +72,6 @@ class SvgfFilter : public Method {
   std::string name() const override { return options_.name; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
-  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
@@ -88,8 +88,10 @@ class SvgfFilter : public Method {
     TemporalHistory seen_history;     // the history the temporal pass read this frame
     TemporalOutput temporal;          // its output
     FloatPlane variance;              // the variance estimate
-    std::vector<AtrousOutput> levels;         // each a-trous level's output (prefiltered variance included)
-    std::vector<RgbPlane> eaw_levels;         // or each EAW level's output
+    // Each a-trous level's output (prefiltered variance included), or each EAW level's output. Deques, whose
+    // elements stay where they are as levels are added: the pass log points at them (filters/pass_log.h).
+    std::deque<AtrousOutput> levels;
+    std::deque<RgbPlane> eaw_levels;
     // The input of level i is the output of level i - 1; level 0 reads the temporal output.
     const RgbPlane& level_input_color(int level) const;
     const FloatPlane& level_input_variance(int level) const;
@@ -97,14 +99,11 @@ class SvgfFilter : public Method {
     const RgbPlane& filtered() const;        // the stream's result: the EMA's output, else spatial_result()
   };
 
-  // Runs one stream's passes; `name` is the stream, "direct", "indirect" or "combined", for the dump's layer names.
-  // `prev_luminance` is its gradient.prev_<stream> with A-SVGF (else empty).
-  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, Frame* dump,
-                                const std::string& name);
+  // Runs one stream's passes and logs them; `name` is the stream, "direct", "indirect" or "combined", for the
+  // layer names. `prev_luminance` is its gradient.prev_<stream> with A-SVGF (else empty).
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, const std::string& name);
   // What the temporal pass of stream `s` reads of A-SVGF (null without it).
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
-  const Stream& stream(const std::string& name) const;
-
 
   SvgfOptions options_;
   Stream direct_, indirect_;

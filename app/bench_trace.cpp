@@ -93,7 +93,8 @@ void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
       const std::pair<const char*, double> rows[] = {{"ms_frame", trace_ms},           {"ms_trace_loop", loop_ms},    {"ms_bare_embree", bare_ms},
                                                      {"rays", double(stats.rays)},      {"tracer_rays_per_s", tracer_rate},
                                                      {"bare_rays_per_s", bare_rate},    {"ratio", tracer_rate / bare_rate},
-                                                     {"frame_bytes", double(frame_bytes(frame))}};
+                                                     {"frame_bytes", double(frame_bytes(frame))},
+                                                     {"frame_planes", double(layers)}};
       for (const auto& [metric, value] : rows)
         *csv << "trace," << name << ',' << size.width << ',' << size.height << ',' << thread_count() << ',' << metric
              << ',' << value << '\n';

@@ -129,7 +129,9 @@ SvgfOptions method_options(const std::string& name, const MethodParams& params) 
     options.taa_params = params.taa;
     return options;
   }
-  if (name == kTrmv) throw Error("method trmv is not one of SVGF's pipelines (its filter: filters/trmv/trmv.h)");
+  if (name == kTrmv)
+    throw Error("method trmv is not one of SVGF's pipelines (its golden passes: filters/trmv/trmv.h, its ports: "
+                "gpu/trmv_vulkan.h)");
   std::string known;
   for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("--method '" + name + "' is not one of: " + known);

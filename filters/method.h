@@ -124,8 +124,8 @@ MethodParams method_defaults(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
-// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines (its
-// port is gpu/trmv_vulkan.h).
+// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines: its
+// golden passes are TrmvFilter's (filters/trmv/trmv.h), its Vulkan ports TrmvVulkan's (gpu/trmv_vulkan.h).
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
 std::vector<std::string> method_names();

@@ -88,7 +88,7 @@ TEST_CASE("gradient image: two samples in one stratum, or planes of another size
   CHECK_THROWS_AS(gradient_image(other.noisy, other.source, Input().prev, other.surface, 0), Error);
 }
 
-TEST_CASE("gradient image variants: abs(delta), or the sample's ratio beside a sample-present weight; the probe names them") {
+TEST_CASE("gradient image variants: abs(delta), or the sample's ratio beside a sample-present weight, and the probe names them") {
   Input in;
   // The sample of the test above: now l = 12, before 20: delta = -8, Delta = 20, ratio 8/20 = 0.4.
   in.source.at(2, 1) = 3u;

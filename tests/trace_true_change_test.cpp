@@ -12,7 +12,7 @@
 
 using namespace rtdr;
 
-TEST_CASE("true change: nothing on a static scene, bit for bit; a factor k where every emitter is scaled by k") {
+TEST_CASE("true change: nothing on a static scene, bit for bit, and a factor k where every emitter is scaled by k") {
   const Frame still = render_true_change_frame(load_scene("static"), 3, 40, 24, RenderSettings{.spp = 2});
   for (const char* c : {"direct.R", "direct.G", "indirect.B"})
     CHECK(still.float_channel(c).data == still.float_channel(std::string("truth.prev_") + c).data);

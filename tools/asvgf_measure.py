@@ -1,19 +1,21 @@
 #!/usr/bin/python3
-"""Measurements behind filters/asvgf/README.md ("Why asvgf does not beat svgf"): A-SVGF's lambda against the true
-change, where each filter's error lies, and where the image's brightness goes, frame by frame and pass by pass.
+"""Measurements for filters/asvgf/README.md, of why asvgf does not beat svgf on our scenes: A-SVGF's lambda
+against the true change, where each filter's error lies, and where the image's brightness goes, frame by frame
+and pass by pass.
 
     /usr/bin/python3 tools/asvgf_measure.py lambda --dump DUMP --truth TRUTH --frames 6,12,18 [--csv OUT.csv]
     /usr/bin/python3 tools/asvgf_measure.py errors --ref REF --truth TRUTH --frames 6,12,18 \\
         --filtered svgf=DIR --filtered asvgf=DUMP [--csv OUT.csv]
     /usr/bin/python3 tools/asvgf_measure.py brightness --ref REF --dump DUMP --frames 50-60 [--csv OUT.csv]
     /usr/bin/python3 tools/asvgf_measure.py noise --ref REF --frames 0-23 --pair svgf=DIR_SEED0,DIR_SEED1 ...
-    /usr/bin/python3 tools/asvgf_measure.py table --metrics eval/results/asvgf/NAME/metrics.csv [--base svgf]
+    /usr/bin/python3 tools/asvgf_measure.py table --metrics EVAL_OUT/metrics.csv [--base svgf]
 
 DUMP is `rtdr filter --method asvgf --dump-passes` output (frame_NNNN.exr with the filter.* layers), TRUTH the same
-frames rendered with `rtdr render --true-change --spp N` (trace/true_change.h), REF reference frames (N spp). Every
-folder holds frame_NNNN.exr. The true lambda of a stratum is Eq. 14 with every pixel of the stratum re-shaded at N
-spp: |sum (l_i - l_{i-1})| / sum max(l_i, l_{i-1}) over its covered pixels, l the luminance of the demodulated stream
-(direct, indirect, or their sum for the `combined` stream). Nothing here is a filter: it reads what rtdr wrote.
+frames rendered with `rtdr render --true-change --spp N` (trace/true_change.h), REF reference frames (N spp),
+EVAL_OUT an `rtdr eval --out` folder. Every folder but EVAL_OUT holds frame_NNNN.exr. The true lambda of a stratum
+is Eq. 14 with every pixel of the stratum re-shaded at N spp: |sum (l_i - l_{i-1})| / sum max(l_i, l_{i-1}) over
+its covered pixels, l the luminance of the demodulated stream (direct, indirect, or their sum for the `combined`
+stream). Nothing here is a filter: it reads what rtdr wrote.
 """
 import argparse
 import csv

@@ -32,6 +32,7 @@ struct EvalOptions {
   std::string size = "320x180";
   int ref_spp = 256;
   uint32_t seed = 0;
+  int max_bounces = 1;
   std::string cache = "out/cache";
   std::string out = "out/eval";
   std::string plan;  // --plan FILE: write the renders the run needs, run nothing
@@ -153,6 +154,7 @@ void run_eval_command(const EvalOptions& o) {
   config.height = size.height;
   config.ref_spp = o.ref_spp;
   config.seed = o.seed;
+  config.max_bounces = o.max_bounces;
   config.cache_dir = o.cache;
   config.gradients = o.gradients;
   config.gradient = o.gradient;
@@ -221,6 +223,10 @@ Command add_eval_command(CLI::App& app) {
   sub->add_option("--ref-spp", o->ref_spp, "samples per pixel of the reference frames")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   sub->add_option("--seed", o->seed, "seed of the 1-spp inputs (references use another)")->capture_default_str();
+  sub->add_option("--max-bounces", o->max_bounces,
+                  "indirect bounces of inputs and references; 0: next-event estimation only, one shadow ray per "
+                  "pixel (a method spec's max_bounces=N gives it inputs and references of its own)")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
   sub->add_option("--cache", o->cache, "where rendered frames are cached (\"\" for none)")->capture_default_str();
   sub->add_option("--out", o->out, "output directory")->capture_default_str();
   sub->add_option("--plan", o->plan,

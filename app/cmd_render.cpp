@@ -14,6 +14,7 @@
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 #include "trace/render_frame.h"
+#include "trace/true_change.h"
 
 #include <chrono>
 #include <cstdio>
@@ -32,6 +33,7 @@ struct RenderOptions {
   RenderSettings settings;
   bool gradients = false;
   GradientParams gradient;
+  bool true_change = false;
 };
 
 // With --gradients, frame A-1 of the range A-B: read from --out where a gradient render left it, else rendered
@@ -71,6 +73,8 @@ void run_render(const RenderOptions& o) {
       throw Error("--gradients compares two 1-spp samples per gradient pixel: use --spp 1, not " +
                   std::to_string(o.settings.spp));
   }
+  if (o.gradients && o.true_change)
+    throw Error("--true-change measures a frame's own surface samples: render it without --gradients");
   // What the run will hold, against the memory there is (eval/run_memory.h), before any work.
   require_run_fits("render", size.width, size.height,
                    render_planes(rendered_frame_planes(scene, o.settings, o.gradients), o.gradients), memory_budget());
@@ -82,7 +86,9 @@ void run_render(const RenderOptions& o) {
   for (int f = frames.first; f <= frames.last; ++f) {  // no overflow: last <= kMaxFrameIndex
     TraceStats stats;
     Frame frame;
-    if (o.gradients) {
+    if (o.true_change) {
+      frame = render_true_change_frame(scene, f, size.width, size.height, o.settings, &stats);
+    } else if (o.gradients) {
       frame = render_frame_with_gradients(scene, f, size.width, size.height, o.settings, o.gradient,
                                           prev ? &*prev : nullptr, &stats);
     } else if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
@@ -135,6 +141,9 @@ Command add_render_command(CLI::App& app) {
   sub->add_flag("--gradients", o->gradients,
                 "A-SVGF's input: merge gradient samples carried from the previous frame (trace/gradients.h)");
   add_gradient_flags(sub, o->gradient);
+  sub->add_flag("--true-change", o->true_change,
+                "A-SVGF's yardstick: add truth.prev_direct and truth.prev_indirect, each pixel's surface sample shaded "
+                "under the previous frame's poses, lights and eye with the same seeds (trace/true_change.h)");
   return {sub, [o] { run_render(*o); }};
 }
 

@@ -42,11 +42,14 @@ RunPlanes render_planes(uint64_t frame, bool gradients) {
                                                                 : ": the frame and what it is made from")};
 }
 
-RunPlanes eval_planes(uint64_t frame, int frames, uint64_t most_method_planes) {
+RunPlanes eval_planes(uint64_t frame, int frames, uint64_t most_method_planes, int input_sequences,
+                      int reference_sequences) {
   const uint64_t n = uint64_t(std::max(frames, 1));
-  const uint64_t planes = n * (frame + kReferencePlanes) + frame + most_method_planes;
-  return {planes, frames_of(n, frame) + " of input, " + std::to_string(kReferencePlanes) +
-                      " planes of each reference, a reference being rendered and a method's " +
+  const uint64_t inputs = uint64_t(std::max(input_sequences, 1)), references = uint64_t(std::max(reference_sequences, 1));
+  const uint64_t planes = n * (inputs * frame + references * kReferencePlanes) + frame + most_method_planes;
+  return {planes, frames_of(inputs * n, frame) + " of input, " + std::to_string(kReferencePlanes) +
+                      " planes of each of " + std::to_string(references * n) +
+                      " reference frames, a reference being rendered and a method's " +
                       std::to_string(most_method_planes) + " planes"};
 }
 

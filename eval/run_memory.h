@@ -10,9 +10,10 @@
 //   render  the frame being made; as much again for what it is made from (the visibility buffer, the G-buffer
 //           and the radiance layers while they are traced, each fewer planes than the frame); and, with
 //           --gradients, the previous frame: 2 or 3 frames.
-//   eval    every input frame of the range at once (run_eval keeps them while each method runs over them) and the
-//           11 planes it keeps of each reference (colour 3, display 3, direct luminance, depth, position 3); one
-//           reference frame while it is rendered; and the method with the most planes.
+//   eval    every input frame of the range at once (run_eval keeps them while each method runs over them), of
+//           each input sequence (the specs' own bounces and gradient rows add sequences), and the 11 planes it keeps
+//           of each reference (colour 3, display 3, direct luminance, depth, position 3), of each reference sequence
+//           (one per bounces); one reference frame while it is rendered; and the method with the most planes.
 //   bench   the frames a stage keeps: the sequence it filters (--stage filter: the warm-up and timed frames, and
 //           the method's planes), or a frame, what it is made from and, for gradients, the previous frame.
 // What does not grow with the image (the scene, Embree's BVH, the threads' stacks) is left out: where the
@@ -47,7 +48,8 @@ uint64_t rendered_frame_planes(const Scene& scene, const RenderSettings& setting
 uint64_t method_planes(const Method& method);
 
 RunPlanes render_planes(uint64_t frame_planes, bool gradients);
-RunPlanes eval_planes(uint64_t frame_planes, int frames, uint64_t most_method_planes);
+RunPlanes eval_planes(uint64_t frame_planes, int frames, uint64_t most_method_planes, int input_sequences = 1,
+                      int reference_sequences = 1);
 RunPlanes bench_planes(uint64_t frame_planes, int frames, uint64_t method_planes);
 
 // Bytes of `run` at width x height: planes x 4 x pixels (UINT64_MAX when that overflows).

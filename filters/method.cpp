@@ -2,6 +2,7 @@
 #include "filters/method.h"
 
 #include "core/error.h"
+#include "filters/asvgf/asvgf.h"
 #include "filters/svgf/svgf.h"
 #include "filters/params.h"
 #include "filters/trmv/trmv.h"
@@ -36,14 +37,8 @@ struct MethodEntry {
   std::function<std::string(const MethodParams&)> describe = nullptr;
 };
 
-// A-SVGF's choices where they differ from SVGF's.
-void asvgf_defaults(MethodParams& p) {
-  p.svgf.alpha = 0.1f;          // [ASVGF18 Sec. 5]: "alpha = 0.1" (SVGF: 0.2)
-  p.svgf.alpha_moments = 0.1f;  // the paper has one alpha
-  p.svgf.kernel_size = 3;       // "a simple 3x3 box filter" for the a-trous [ASVGF18 Sec. 4]
-}
-
-// svgf runs every stage of [SVGF17 Sec. 3]; asvgf is SVGF with the adaptive alpha and the 3x3 box [ASVGF18 Sec. 4];
+// svgf runs every stage of [SVGF17 Sec. 3]; asvgf is SVGF with the adaptive alpha and the 3x3 box [ASVGF18 Sec. 4],
+// its defaults A-SVGF's own (asvgf_defaults, filters/asvgf/asvgf.h);
 // a-eaw is EAW followed by A-SVGF's adaptive temporal filter, our stand-in for the paper's A-RAE [ASVGF18 Fig. 6]; accum stops after the temporal accumulation [SVGF17 Sec. 4.1]; eaw
 // is Dammertz 2010's edge-avoiding a-trous without temporal reuse, a baseline of [SVGF17 Sec. 5.1].
 const std::vector<MethodEntry>& registry() {

@@ -116,8 +116,8 @@ struct MethodParams {
   TrmvParams trmv;
 };
 
-// A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf:
-// alpha = alpha_moments = 0.1 [ASVGF18 Sec. 5] and the 3x3 box a-trous [ASVGF18 Sec. 4]). Throws for an unknown name.
+// A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf and
+// a-eaw: asvgf_defaults in filters/asvgf/asvgf.h, alpha = 0.1 and the 3x3 box). Throws for an unknown name.
 MethodParams method_defaults(const std::string& name);
 // `params` are the tunables; a method ignores the tables of the stages it does not run. Without them, the
 // method's own defaults.

@@ -23,6 +23,8 @@ const std::vector<PortBound>& port_bounds() {
       {"svgf", "filter.*.moments.mu2", true, (1 + kSvgfColour) * (1 + kSvgfColour) - 1,
        (1 + kSvgfColourFp16) * (1 + kSvgfColourFp16) - 1, true, "tests/gpu_svgf_test.cpp"},
       {"svgf", "filter.*.history_length", false, 0.0, 0.0, true, "tests/gpu_svgf_test.cpp"},
+      // Which variance each pixel took (1: the spatial estimate), a function of the exact n: exact.
+      {"svgf", "filter.*.variance.spatial", false, 0.0, 0.0, true, "tests/gpu_svgf_test.cpp"},
       // A-SVGF: SVGF's colour bound, whose derivation holds with alpha_i fixed, and alpha_i itself: guards.
       {"asvgf", "color.[RGB]", true, kSvgfColour, kSvgfColourFp16, false, "tests/gpu_svgf_test.cpp"},
       {"asvgf", "filter.*.alpha", false, 1e-3, 1e-3, false, "tests/gpu_svgf_test.cpp"},

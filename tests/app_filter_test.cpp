@@ -57,12 +57,13 @@ std::set<std::string> channels(const rtdr::Frame& f) {
 
 // The layers --dump-passes adds for svgf with its 5 a-trous levels, as its passes declare them
 // (filters/passes.h, docs/buffers.md "Filter passes"). Counted by hand: per stream, temporal (3 channels),
-// the two moments, the history length, the variance, per level 3 + 2, and filtered (3); then filter.tonemapped.
+// the two moments, the history length, the variance and which estimate it is, per level 3 + 2, and filtered (3);
+// then filter.tonemapped.
 std::set<std::string> dump_channels() {
   const std::vector<std::string> declared = rtdr::make_method("svgf")->dump_channels();
   const std::set<std::string> names(declared.begin(), declared.end());
   CHECK(names.size() == declared.size());
-  CHECK(names.size() == 2 * (3 + 2 + 1 + 1 + 5 * (3 + 2) + 3) + 3);
+  CHECK(names.size() == 2 * (3 + 2 + 1 + 1 + 1 + 5 * (3 + 2) + 3) + 3);
   return names;
 }
 

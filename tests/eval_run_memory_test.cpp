@@ -28,6 +28,7 @@ TEST_CASE("run memory: the planes each command keeps, and the bytes at a size") 
   CHECK(render_planes(90, false).planes == 180);
   CHECK(render_planes(90, true).planes == 270);
   CHECK(eval_planes(90, 3, 40).planes == 3 * (90 + 11) + 90 + 40);
+  CHECK(eval_planes(90, 3, 40, 2, 3).planes == 3 * (2 * 90 + 3 * 11) + 90 + 40);  // two inputs, three references
   CHECK(bench_planes(90, 10, 40).planes == 940);
   CHECK(run_bytes(render_planes(90, false), 640, 360) == uint64_t(180) * 4 * 640 * 360);
   CHECK(run_bytes({uint64_t(1) << 62, ""}, 16384, 16384) == UINT64_MAX);  // saturates, never wraps

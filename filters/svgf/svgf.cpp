@@ -3,7 +3,6 @@
 #include "filters/svgf/svgf.h"
 
 #include "core/error.h"
-#include "filters/input_check.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/prefilter.h"
 #include "filters/svgf/variance.h"
@@ -12,7 +11,7 @@
 
 namespace rtdr {
 
-// Every dump layer is named by its declaration in filters/passes.h (dump_layer), listed in docs/buffers.md.
+// Every logged layer is named by its declaration in filters/passes.h, listed in docs/buffers.md.
 using namespace layers;
 
 SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) {
@@ -47,63 +46,20 @@ const RgbPlane& SvgfFilter::Stream::spatial_result() const {
   return temporal.color;
 }
 
-void SvgfFilter::adaptive_alpha_stream(Stream& s, const std::string& name) {
-  const SvgfParams& p = options_.svgf;
-  const int s_size = stratum_size_, w = s.noisy.width, h = s.noisy.height;
-  // A pixel's stratum, where the gradient passes' per-stratum golden functions are probed.
-  const auto stratum = [s_size](int x, int y) { return glm::ivec2(x / s_size, y / s_size); };
-  // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
-  time_pass("gradient", [&] { s.gradient = gradient_image(s.noisy, gradient_source_, s.prev_luminance, surface_, s_size); });
-  log_pass("gradient", name)
-      .writes(kGradientDelta, s.gradient.values.delta, s_size)
-      .writes(kGradientNorm, s.gradient.values.norm, s_size)
-      .writes(kGradientLuminance, s.gradient.values.luminance, s_size)
-      .writes(kGradientVariance, s.gradient.values.variance, s_size)
-      .pixel([this, &s, stratum](int x, int y, Probe* probe) {
-        const glm::ivec2 q = stratum(x, y);
-        gradient_stratum(s.noisy, gradient_source_, s.prev_luminance, surface_, stratum_size_, q.x, q.y, probe);
-      });
-  // 2. Its reconstruction, iteration k reading iteration k - 1 [ASVGF18 Eq. 7-12].
-  s.gradient_levels.clear();
-  for (int level = 0; level < options_.asvgf.gradient_levels; ++level) {
-    const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels.back();
-    time_pass("gradient_atrous", [&] { s.gradient_levels.push_back(gradient_atrous_level(in, s.gradient, level, p)); });
-    const GradientValues& out = s.gradient_levels.back();
-    log_pass("gradient_atrous", name, level)
-        .writes(kGradientLevelDelta, out.delta, s_size)
-        .writes(kGradientLevelNorm, out.norm, s_size)
-        .writes(kGradientLevelLuminance, out.luminance, s_size)
-        .writes(kGradientLevelVariance, out.variance, s_size)
-        .pixel([this, &s, in = &in, level, stratum](int x, int y, Probe* probe) {
-          const glm::ivec2 q = stratum(x, y);
-          gradient_atrous_pixel(*in, prefilter_variance(in->variance), s.gradient, level, options_.svgf, q.x, q.y,
-                                probe);
-        });
-  }
-  // 3. lambda and alpha_i [ASVGF18 Eq. 14-15, Sec. 3.5].
-  const GradientValues& reconstructed = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
-  time_pass("adaptive_alpha", [&] {
-    s.adaptive = adaptive_alpha_pass(reconstructed, s_size, w, h, p.alpha, options_.asvgf.alpha_max_radius);
-  });
-  log_pass("adaptive_alpha", name)
-      .writes(kLambda, s.adaptive.lambda, s_size)
-      .writes(kAlpha, s.adaptive.alpha)
-      .pixel([this, reconstructed = &reconstructed](int x, int y, Probe* probe) {
-        adaptive_alpha_pixel(*reconstructed, stratum_size_, options_.svgf.alpha, options_.asvgf.alpha_max_radius, x, y,
-                             probe);
-      });
-}
-
 std::optional<TemporalAdaptive> SvgfFilter::temporal_adaptive(const Stream& s) const {
   if (!options_.adaptive) return std::nullopt;
-  return TemporalAdaptive{&s.adaptive.lambda_max, options_.asvgf.history_rule == 0};
+  return s.asvgf.temporal(options_.asvgf);
 }
 
-const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, const std::string& name) {
+const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance,
+                                          const std::string& name) {
   const SvgfParams& p = options_.svgf;
   s.noisy = std::move(noisy);
-  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5].
-  if (options_.adaptive) adaptive_alpha_stream(s, name);
+  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5] (filters/asvgf/asvgf.h),
+  //    its passes logged beside SVGF's.
+  if (options_.adaptive)
+    s.asvgf.filter(s.noisy, std::move(prev_luminance), gradient_samples_, surface_, p, options_.asvgf, name,
+                   [this](const std::string& pass, const std::function<void()>& run) { time_pass(pass, run); }, log_);
   // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
   //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
   s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
@@ -125,9 +81,10 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, const std::
   int history_level = -1;  // which level's output becomes the colour history; -1: the temporal output
   if (options_.spatial == SpatialFilter::Atrous) {
     time_pass("variance", [&] { s.variance = variance_pass(s.temporal, surface_, p); });
-    log_pass("variance", name).writes(kVariance, s.variance).pixel([this, &s](int x, int y, Probe* probe) {
-      variance_pixel(s.temporal, surface_, options_.svgf, x, y, probe);
-    });
+    log_pass("variance", name)
+        .writes(kVariance, s.variance)
+        .writes(kVarianceSpatial, variance_spatial_plane(s.temporal.length, surface_.mesh, p))  // for the dump alone
+        .pixel([this, &s](int x, int y, Probe* probe) { variance_pixel(s.temporal, surface_, options_.svgf, x, y, probe); });
     for (int level = 0; level < p.atrous_levels; ++level) {
       time_pass("atrous", [&] {
         s.levels.push_back(atrous_level(s.level_input_color(level), s.level_input_variance(level), surface_, level, p));
@@ -191,11 +148,7 @@ InputChannels svgf_input_channels(const SvgfOptions& options) {
       common_input_channels({"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B"});
   if (options.spatial == SpatialFilter::Eaw)
     for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
-  if (options.adaptive) {  // the gradient samples of trace/gradients.h
-    c.floats.push_back("gradient.prev_direct");
-    c.floats.push_back("gradient.prev_indirect");
-    c.uints.push_back("gradient.source");
-  }
+  if (options.adaptive) add_gradient_inputs(c);  // the gradient samples of trace/gradients.h
   return c;
 }
 
@@ -211,27 +164,29 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
-  if (options_.adaptive) {
-    // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
-    stratum_size_ = frame_stratum_size(in, options_.name);
-    gradient_source_ = in.uint_channel("gradient.source");
-    // At most one sample per stratum (filters/input_check.h, the rule rtdr check applies), named with the frame.
-    if (const std::vector<std::string> crowded = gradient_strata_problems(gradient_source_, stratum_size_);
-        !crowded.empty())
-      throw Error((in.source.empty() ? std::string("the input frame") : in.source) + ": " + crowded.front());
-    direct_.prev_luminance = in.float_channel("gradient.prev_direct");
-    indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");
-  }
+  // A-SVGF: the gradient samples, and the stratum size they were made with (the render's header, trace/gradients.h).
+  if (options_.adaptive) gradient_samples_ = GradientSamples::from_frame(in, options_.name);
   log_.begin(in.width(), in.height());
 
-  // The two streams are filtered separately [SVGF17 Sec. 3].
-  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), "direct");
-  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), "indirect");
+  const auto prev_luminance = [&](const char* stream) {  // A-SVGF: gradient.prev_<stream>
+    return options_.adaptive ? in.float_channel("gradient.prev_" + std::string(stream)) : FloatPlane();
+  };
+  if (options_.svgf.streams == 2) {
+    // The two streams are filtered separately [SVGF17 Sec. 3].
+    filtered_[0] = &filter_stream(direct_, rgb_plane(in, "direct"), prev_luminance("direct"), "direct");
+    filtered_[1] = &filter_stream(indirect_, rgb_plane(in, "indirect"), prev_luminance("indirect"), "indirect");
+  } else {
+    // One stream, direct + indirect, with one gradient [ASVGF18 Sec. 4]: luminance is linear, so the previous
+    // frame's luminance of the sum is the sum of the two (the samples' albedo divides out of both alike).
+    const OneStream one = one_stream(in, options_.adaptive);
+    filtered_[0] = &filter_stream(direct_, one.illumination, one.prev_luminance, kCombinedStream);
+    no_light_ = RgbPlane(in.width(), in.height());
+    filtered_[1] = &no_light_;
+  }
   // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
-  time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
+  time_pass("modulate", [&] { color_ = remodulate(*filtered_[0], *filtered_[1], albedo_, emission_); });
   log_pass("modulate").pixel([this](int x, int y, Probe* probe) {
-    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y),
-                     probe);
+    remodulate_pixel(filtered_[0]->at(x, y), filtered_[1]->at(x, y), albedo_.at(x, y), emission_.at(x, y), probe);
   });
   time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
   log_pass("tonemap").writes(kTonemapped, tonemapped_).pixel([this](int x, int y, Probe* probe) {
@@ -256,13 +211,26 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   return out;
 }
 
+std::vector<std::string> svgf_streams(const SvgfParams& params) {
+  if (params.streams == 1) return {kCombinedStream};
+  return {"direct", "indirect"};
+}
+
+OneStream one_stream(const Frame& in, bool adaptive) {
+  OneStream one{rgb_plane(in, "direct"), FloatPlane()};
+  const RgbPlane indirect = rgb_plane(in, "indirect");
+  for (size_t i = 0; i < one.illumination.data.size(); ++i) one.illumination.data[i] += indirect.data[i];
+  if (adaptive) {  // gradient.prev_direct + gradient.prev_indirect
+    one.prev_luminance = in.float_channel("gradient.prev_direct");
+    const FloatPlane& prev_indirect = in.float_channel("gradient.prev_indirect");
+    for (size_t i = 0; i < one.prev_luminance.data.size(); ++i) one.prev_luminance.data[i] += prev_indirect.data[i];
+  }
+  return one;
+}
+
 std::vector<PassUse> svgf_passes(const SvgfOptions& options) {
   std::vector<PassUse> passes;
-  if (options.adaptive) {
-    passes.push_back({&find_pass("gradient")});
-    passes.push_back({&find_pass("gradient_atrous"), options.asvgf.gradient_levels});
-    passes.push_back({&find_pass("adaptive_alpha")});
-  }
+  if (options.adaptive) passes = asvgf_passes(options.asvgf);
   passes.push_back({&find_pass("temporal")});
   if (options.spatial == SpatialFilter::Atrous) {
     passes.push_back({&find_pass("variance")});
@@ -277,7 +245,9 @@ std::vector<PassUse> svgf_passes(const SvgfOptions& options) {
   return passes;
 }
 
-std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) { return dump_channels_of(svgf_passes(options)); }
+std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) {
+  return dump_channels_of(svgf_passes(options), svgf_streams(options.svgf));
+}
 
 std::vector<std::string> SvgfFilter::probe_passes() const {
   std::vector<std::string> names;

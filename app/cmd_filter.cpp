@@ -135,7 +135,10 @@ Command add_probe_command(CLI::App& app) {
   }
   sub->add_option("--pass", o->pass, names)->capture_default_str();
   sub->footer(passes);
-  sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes); trmv: visibility or indirect")->capture_default_str();
+  sub->add_option("--stream", o->stream,
+                  "direct or indirect (for per-stream passes; combined with --streams 1); trmv: visibility (or "
+                  "direct), diffuse or glossy")
+      ->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");
   add_method_flags(sub, o->params, o->method);

@@ -10,8 +10,8 @@
 //       .pixel([this, &s](int x, int y, Probe* probe) { variance_pixel(s.temporal, surface_, p, x, y, probe); });
 //
 // A logged plane is pointed to, not copied: it must stay where it is until the next frame's log replaces this one
-// (the method's members, which hold what the probe needs anyway). A plane made for the log alone (a device
-// plane read back by a port) is moved into it instead.
+// (the method's members, which hold what the probe needs anyway). A plane made for the log alone (the variance pass's
+// filter.<s>.variance.spatial, which only the dump shows) is moved into it instead.
 #pragma once
 
 #include "core/frame.h"

@@ -9,7 +9,8 @@ namespace rtdr {
 Frame render_true_change_frame(const Scene& scene, int frame_index, int width, int height,
                                const RenderSettings& settings, TraceStats* stats) {
   Frame frame = render_frame(scene, frame_index, width, height, settings, stats);
-  // Frame i's surface samples, seen from frame i-1: its visibility buffer with the previous pose, lights and eye.
+  // Frame i's surface samples, seen from frame i-1: its visibility buffer with the previous pose, lights and eye;
+  // the same surface sample shaded under both frames, as the temporal gradient compares them [ASVGF18 Eq. 2].
   // The index stays i, so every pixel draws the seeds frame i drew (pixel_seed), and unchanged light cancels.
   FrameGeometry previous = rasterize_frame(scene, frame_index, width, height);
   previous.pose = previous.prev_pose;

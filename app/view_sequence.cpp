@@ -93,32 +93,33 @@ nlohmann::json group_layers(const std::vector<std::string>& channels) {
   return layers;
 }
 
-// The layers of pass `pass` that `frame` holds: each declared layer for every stream and level it was written for.
-nlohmann::json pass_layers(const PassDecl& pass, const Frame& frame) {
+// The layers that the runs of pass `pass` in `log` wrote, in the order they ran: each declared layer for every
+// stream and level it was written for.
+nlohmann::json pass_layers(const PassLog& log, const std::string& pass) {
   nlohmann::json layers = nlohmann::json::array();
-  for (const LayerDecl* layer : pass.writes) {
-    const bool per_stream = layer->pattern.find("<s>") != std::string_view::npos;
-    const bool per_level = layer->pattern.find("<i>") != std::string_view::npos;
-    for (const char* stream : {"direct", "indirect"}) {
-      for (int level = per_level ? 0 : -1; level < (per_level ? 64 : 0); ++level) {
-        const std::vector<std::string> channels = layer_channels(*layer, per_stream ? stream : "", level);
-        const bool present = std::all_of(channels.begin(), channels.end(), [&](const auto& c) { return frame.has(c); });
-        if (!present) break;
-        layers.push_back({{"name", layer_name(*layer, per_stream ? stream : "", level)},
-                          {"pattern", layer->pattern},
-                          {"kind", layer->type == LayerType::Rgb ? "rgb" : "scalar"},
-                          {"meaning", layer->meaning},
-                          {"cite", layer->cite},
-                          {"stream", per_stream ? stream : ""},
-                          {"level", per_level ? level : 0},
-                          // Values the tone map made, in [0, 1]: shown without another tone map.
-                          {"display_referred", layer->cite.find("Reinhard02") != std::string_view::npos}});
-        if (!per_level) break;
-      }
-      if (!per_stream) break;
-    }
+  for (const PassRun& run : log.runs()) {
+    if (run.pass().name != pass) continue;
+    for (const auto& [layer, name] : run.written())
+      layers.push_back({{"name", name},
+                        {"pattern", layer->pattern},
+                        {"kind", layer->type == LayerType::Rgb ? "rgb" : "scalar"},
+                        {"meaning", layer->meaning},
+                        {"cite", layer->cite},
+                        {"stream", run.stream()},
+                        {"level", std::max(run.level(), 0)},
+                        // Values the tone map made, in [0, 1]: shown without another tone map.
+                        {"display_referred", layer->cite.find("Reinhard02") != std::string_view::npos}});
   }
   return layers;
+}
+
+// The streams (or components) the passes of `log` ran on, in the order they first ran.
+std::vector<std::string> log_streams(const PassLog& log) {
+  std::vector<std::string> streams;
+  for (const PassRun& run : log.runs())
+    if (!run.stream().empty() && std::find(streams.begin(), streams.end(), run.stream()) == streams.end())
+      streams.push_back(run.stream());
+  return streams;
 }
 
 const char* scope_name(PassScope scope) {
@@ -156,7 +157,7 @@ std::optional<LayerPlanes> layer_planes(const Frame& frame, const std::string& n
 
 ViewSequence::ViewSequence(const ViewOptions& o, const std::function<void(const std::string&)>& progress)
     : options_(o) {
-  const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  std::unique_ptr<Method> method = make_method(o.method, o.params);
   const std::vector<SequenceFrame> all = list_sequence(o.in, "");
   const std::vector<SequenceFrame> viewed = list_sequence(o.in, o.frames);
   const InputChannels inputs = method->inputs();
@@ -173,10 +174,13 @@ ViewSequence::ViewSequence(const ViewOptions& o, const std::function<void(const 
       progress("frame " + std::to_string(f.index) + "  filtered for history");
       continue;
     }
+    // The frame is filtered by a copy of the method, which the view keeps: its pass log, which the probe reads,
+    // points at its own planes. The method goes on from a copy of it.
     FrameState& s = frames_.emplace_back();
     s.index = f.index;
-    s.golden = filter_with_dump(*method, in);
     s.state = method->clone();
+    s.golden = filter_with_dump(*s.state, in);
+    method = s.state->clone();
     s.input = keep_channels(in, inputs);
     if (!o.port_dumps.empty()) {
       const std::string path = frame_path(o.port_dumps, f.index, "exr");
@@ -231,7 +235,7 @@ void ViewSequence::make_info() {
            {"in", options_.in},
            {"width", first.input.width()},
            {"height", first.input.height()},
-           {"streams", first.state->probe_streams()},
+           {"streams", log_streams(first.state->passes())},
            {"reference", !options_.ref.empty()},
            {"port", !options_.port_dumps.empty()},
            {"frames", nlohmann::json::array()}};
@@ -246,17 +250,19 @@ void ViewSequence::make_info() {
                     {"cite", ""},
                     {"description", "the layers the method reads from --in (docs/buffers.md)"},
                     {"layers", group_layers(first.state->inputs().floats)}});
-  for (const std::string& name : first.state->probe_passes()) {
+  for (const std::string& name : first.state->passes().passes()) {
     const PassDecl& pass = find_pass(name);
+    const auto& runs = first.state->passes().runs();
+    const bool probed = std::any_of(runs.begin(), runs.end(), [&](const PassRun& r) { return r.pass().name == name && r.probed(); });
     groups.push_back({{"name", name},
                       {"source", "golden"},
-                      {"probe", true},
+                      {"probe", probed},
                       {"cite", pass.cite},
                       {"golden", pass.golden},
                       {"scope", scope_name(pass.scope)},
                       {"reads", pass.reads},
                       {"description", pass.probe},
-                      {"layers", pass_layers(pass, first.golden)}});
+                      {"layers", pass_layers(first.state->passes(), name)}});
   }
   // What the passes probed do not list (trmv's colour and display, made by passes it does not probe): "output".
   std::set<std::string> listed;

@@ -140,7 +140,7 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
     return std::vector<float>{};
   };
   CHECK(m->probe_passes() == std::vector<std::string>{"trmv_spatial", "trmv_falloff", "trmv_reshade", "trmv_temporal",
-                                                      "trmv_cleanup"});
+                                                      "trmv_cleanup", "tonemap"});
   int covered = 0;
   for (int y = 2; y < kH; y += 6)
     for (int x = 3; x < kW; x += 7) {
@@ -156,6 +156,8 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
       CHECK(term(m->probe("trmv_temporal", x, y, "glossy", 0), "cbar_i", "cbar_i = c~_i")[1] ==
             dump.float_channel("filter.trmv.glossy.temporal.G").data[i]);
       CHECK_FALSE(m->probe("trmv_spatial", x, y, "direct", 0).terms().empty());
+      CHECK(term(m->probe("tonemap", x, y, "", -1), "display colour")[1] ==
+            dump.float_channel("filter.tonemapped.G").data[i]);
     }
   CHECK(covered > 10);
   CHECK_THROWS_AS(m->probe("atrous", 1, 1, "visibility", 0), Error);      // not one of trmv's passes

@@ -78,24 +78,50 @@ void TrmvFilter::reset() {
   cones_ = {};
 }
 
-const RgbPlane& TrmvFilter::filter_component(Component& c) {
+const RgbPlane& TrmvFilter::filter_component(Component& c, const std::string& name, const Layers& layers) {
+  using namespace layers;
   const TrmvParams& p = params_.trmv;
+  // A component's planes as its layers hold them: visibility travels as (V, V, V), its layers are scalar.
+  const auto write = [&](PassRun& run, const LayerDecl* layer, const RgbPlane& rgb) -> PassRun& {
+    if (layer->type == LayerType::Rgb) return run.writes(*layer, rgb);
+    FloatPlane first(rgb.width, rgb.height);
+    for (size_t i = 0; i < rgb.data.size(); ++i) first.data[i] = rgb.data[i].x;
+    return run.writes(*layer, std::move(first));
+  };
   // 1. The spatial filter of the current frame: c~_i.
   time_pass("trmv_spatial", [&] { c.filtered = trmv_spatial_pass(c.noisy, surface_, p, params_.svgf); });
+  write(log_pass("trmv_spatial", name), layers.spatial, c.filtered)
+      .pixel([this, &c](int x, int y, Probe* probe) {  // the second (vertical) 1-D pass, on the first one's output
+        const TrmvParams& q = params_.trmv;
+        const RgbPlane rows = trmv_spatial_axis(c.noisy, surface_, kTrmvHorizontal, q.spatial_radius, FloatPlane(),
+                                                q.spatial_sigma, params_.svgf);
+        trmv_spatial_pixel(rows, surface_, kTrmvVertical, q.spatial_radius, q.spatial_sigma, params_.svgf, x, y, probe);
+      });
   // 2-3. The history along the component's motion, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2, Sec. 5].
   c.seen_history = std::move(c.history);  // replaced below by this frame's
   time_pass("trmv_temporal", [&] {
     c.temporal = trmv_temporal_pass(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p);
   });
+  PassRun& temporal = log_pass("trmv_temporal", name);
+  write(temporal, layers.temporal, c.temporal.color);
+  write(temporal, layers.clamped, c.temporal.clamped).pixel([this, &c](int x, int y, Probe* probe) {
+    trmv_temporal_pixel(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, params_.trmv, x, y, probe);
+  });
   // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8].
   time_pass("trmv_cleanup", [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, p, params_.svgf); });
+  PassRun& cleanup = log_pass("trmv_cleanup", name);
+  if (layers.w_a) cleanup.writes(*layers.w_a, c.cleaned.w_a);
+  cleanup.writes(*layers.w_c, c.cleaned.w_c);
+  write(cleanup, layers.cleaned, c.cleaned.color).pixel([this, &c](int x, int y, Probe* probe) {
+    trmv_cleanup_weights_pixel(c.temporal, c.alpha, params_.trmv, x, y, probe);
+  });
   // Next frame's history: before the clean-up unless asked otherwise (history_after_cleanup).
   c.history.color = p.history_after_cleanup != 0 ? c.cleaned.color : c.temporal.color;
   c.history.mesh = surface_.mesh;
   return c.cleaned.color;
 }
 
-void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
+void TrmvFilter::prepare_visibility(const Frame& in) {
   const TrmvParams& p = params_.trmv;
   // Along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the constant
   // alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
@@ -103,12 +129,19 @@ void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
   receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
   seen_prev_positions_ = std::move(prev_positions_);  // replaced after the frame by this frame's
   visibility_.alpha = {};
-  if (trmv_uses_shadow(p.motion))
+  if (trmv_uses_shadow(p.motion)) {
     time_pass("trmv_falloff", [&] {
       TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
       visibility_.alpha = std::move(falloff.alpha_v);
-      theta = std::move(falloff.theta);
+      theta_ = std::move(falloff.theta);
     });
+    log_pass("trmv_falloff", "visibility")
+        .writes(layers::kTrmvTheta, theta_)
+        .writes(layers::kTrmvAlphaV, visibility_.alpha)
+        .pixel([this](int x, int y, Probe* probe) {
+          trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, params_.trmv, x, y, probe);
+        });
+  }
   visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
   visibility_.motion = {trmv_uses_shadow(p.motion) ? shadow_motion_.motion : surface_.motion, {}, {}, {}};
 }
@@ -134,131 +167,78 @@ void TrmvFilter::prepare_diffuse(const Frame& in) {
     diffuse_.motion.reshaded = std::move(r.reshaded);
     diffuse_.motion.reshaded_valid = std::move(r.reshaded_valid);
   });
+  // The diffuse light's: the re-shaded history at a disoccluded pixel.
+  log_pass("trmv_reshade", "diffuse")
+      .writes(layers::kTrmvDiffuseReshaded, diffuse_.motion.reshaded)
+      .pixel([this](int x, int y, Probe* probe) {
+        glm::vec3 reshaded;
+        trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, x, y, reshaded, probe);
+      });
 }
 
 Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
+  using namespace layers;
   times_.clear();
   const RgbPlane& history = diffuse_.history.color;
   if (history.width != 0 && (history.width != in.width() || history.height != in.height()))
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
-  if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
+  log_.begin(in.width(), in.height());
   surface_ = SurfacePlanes::from_frame(in);
   const TrmvParams& p = params_.trmv;
 
-  FloatPlane theta;
-  prepare_visibility(in, theta);
-  const RgbPlane& v = filter_component(visibility_);
+  prepare_visibility(in);
+  const RgbPlane& v = filter_component(visibility_, "visibility",
+                                       {&kTrmvVisibilitySpatial, &kTrmvVisibilityTemporal, &kTrmvVisibilityClamped,
+                                        &kTrmvWeightA, &kTrmvVisibilityWeightC, &kTrmvVisibilityCleaned});
   prepare_diffuse(in);
-  const RgbPlane& diffuse = filter_component(diffuse_);
+  const RgbPlane& diffuse = filter_component(diffuse_, "diffuse",
+                                             {&kTrmvDiffuseSpatial, &kTrmvDiffuseTemporal, &kTrmvDiffuseClamped,
+                                              nullptr, &kTrmvDiffuseWeightC, &kTrmvDiffuseCleaned});
   glossy_.noisy = rgb_plane(in, "indirect.glossy");
   glossy_.motion = {trmv_uses_glossy(p.motion) ? glossy_or_surface_motion(in, surface_.motion) : surface_.motion,
                     {}, {}, {}};
-  const RgbPlane& glossy = filter_component(glossy_);
+  const RgbPlane& glossy = filter_component(glossy_, "glossy",
+                                            {&kTrmvGlossySpatial, &kTrmvGlossyTemporal, &kTrmvGlossyClamped, nullptr,
+                                             &kTrmvGlossyWeightC, &kTrmvGlossyCleaned});
   prev_positions_ = {receiver_.position, surface_.mesh};
 
-  RgbPlane color, display;
-  time_pass("modulate", [&] { color = trmv_remodulate(in, v, diffuse, glossy); });
-  time_pass("tonemap", [&] { display = tonemap(color, params_.tonemap); });
-  this->dump(dump, theta, display);
+  time_pass("modulate", [&] { color_ = trmv_remodulate(in, v, diffuse, glossy); });
+  time_pass("tonemap", [&] { display_ = tonemap(color_, params_.tonemap); });
+  log_pass("tonemap").writes(kTonemapped, display_).pixel([this](int x, int y, Probe* probe) {
+    tonemap_pixel(color_.at(x, y), params_.tonemap, probe);
+  });
+  if (dump) log_.dump(*dump);
 
   Frame out(in.width(), in.height());
   out.source = in.source;
-  set_rgb_plane(out, layer_name(layers::kColor), color);
-  set_rgb_plane(out, layer_name(layers::kDisplay), display);  // no TAA: the tone-mapped colour
+  set_rgb_plane(out, layer_name(kColor), color_);
+  set_rgb_plane(out, layer_name(kDisplay), display_);  // no TAA: the tone-mapped colour
   return out;
 }
 
-void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const {
-  if (!dump) return;
-  using namespace layers;
-  const TrmvParams& p = params_.trmv;
-  const auto first = [](const RgbPlane& rgb) {  // visibility travels as (V, V, V)
-    FloatPlane out(rgb.width, rgb.height);
-    for (size_t i = 0; i < rgb.data.size(); ++i) out.data[i] = rgb.data[i].x;
-    return out;
-  };
-  dump_layer(dump, kTrmvVisibilitySpatial, {}, -1, first(visibility_.filtered));
-  dump_layer(dump, kTrmvDiffuseSpatial, {}, -1, diffuse_.filtered);
-  dump_layer(dump, kTrmvGlossySpatial, {}, -1, glossy_.filtered);
-  if (trmv_uses_shadow(p.motion)) {
-    dump_layer(dump, kTrmvTheta, {}, -1, theta);
-    dump_layer(dump, kTrmvAlphaV, {}, -1, visibility_.alpha);
-  }
-  if (trmv_uses_dual(p.motion) && p.cones != 0) dump_layer(dump, kTrmvDiffuseReshaded, {}, -1, diffuse_.motion.reshaded);
-  dump_layer(dump, kTrmvWeightA, {}, -1, visibility_.cleaned.w_a);
-  dump_layer(dump, kTrmvVisibilityTemporal, {}, -1, first(visibility_.temporal.color));
-  dump_layer(dump, kTrmvVisibilityClamped, {}, -1, first(visibility_.temporal.clamped));
-  dump_layer(dump, kTrmvDiffuseTemporal, {}, -1, diffuse_.temporal.color);
-  dump_layer(dump, kTrmvDiffuseClamped, {}, -1, diffuse_.temporal.clamped);
-  dump_layer(dump, kTrmvGlossyTemporal, {}, -1, glossy_.temporal.color);
-  dump_layer(dump, kTrmvGlossyClamped, {}, -1, glossy_.temporal.clamped);
-  dump_layer(dump, kTrmvVisibilityWeightC, {}, -1, visibility_.cleaned.w_c);
-  dump_layer(dump, kTrmvDiffuseWeightC, {}, -1, diffuse_.cleaned.w_c);
-  dump_layer(dump, kTrmvGlossyWeightC, {}, -1, glossy_.cleaned.w_c);
-  dump_layer(dump, kTrmvVisibilityCleaned, {}, -1, first(visibility_.cleaned.color));
-  dump_layer(dump, kTrmvDiffuseCleaned, {}, -1, diffuse_.cleaned.color);
-  dump_layer(dump, kTrmvGlossyCleaned, {}, -1, glossy_.cleaned.color);
-  dump_layer(dump, kTonemapped, {}, -1, tonemapped);
-}
-
-std::vector<std::string> trmv_passes(const TrmvParams& p) {
-  std::vector<std::string> passes = {"trmv_spatial"};
-  if (trmv_uses_shadow(p.motion)) passes.push_back("trmv_falloff");
-  if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back("trmv_reshade");
-  passes.insert(passes.end(), {"trmv_temporal", "trmv_cleanup"});
+std::vector<PassUse> trmv_passes(const TrmvParams& p) {
+  std::vector<PassUse> passes = {{&find_pass("trmv_spatial")}};
+  if (trmv_uses_shadow(p.motion)) passes.push_back({&find_pass("trmv_falloff")});
+  if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back({&find_pass("trmv_reshade")});
+  for (const char* name : {"trmv_temporal", "trmv_cleanup", "tonemap"}) passes.push_back({&find_pass(name)});
   return passes;
 }
 
-std::vector<std::string> TrmvFilter::probe_passes() const { return trmv_passes(params_.trmv); }
+std::vector<std::string> TrmvFilter::probe_passes() const {
+  std::vector<std::string> names;
+  for (const PassUse& use : trmv_passes(params_.trmv)) names.emplace_back(use.pass->name);
+  return names;
+}
 
 std::vector<std::string> TrmvFilter::dump_channels() const { return trmv_dump_channels(params_.trmv); }
 
-std::vector<std::string> trmv_dump_channels(const TrmvParams& params) {
-  std::vector<std::string> channels;
-  for (const std::string& name : trmv_passes(params))
-    for (const LayerDecl* layer : find_pass(name).writes)
-      for (std::string& c : layer_channels(*layer)) channels.push_back(std::move(c));
-  for (std::string& c : layer_channels(layers::kTonemapped)) channels.push_back(std::move(c));
-  return channels;
-}
+std::vector<std::string> trmv_dump_channels(const TrmvParams& params) { return dump_channels_of(trmv_passes(params)); }
 
-const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) const {
-  if (stream == "visibility" || stream == "direct") return visibility_;  // direct's noisy part is its visibility
-  if (stream == "diffuse") return diffuse_;
-  if (stream == "glossy") return glossy_;
-  throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), diffuse, glossy");
-}
-
-Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int) const {
-  const std::vector<std::string> passes = probe_passes();
-  if (std::find(passes.begin(), passes.end(), pass) == passes.end()) {
-    find_pass(pass);  // throws, listing the passes, when there is no such pass at all
-    throw Error("method trmv does not run pass '" + pass + "' with these parameters");
-  }
-  if (surface_.width() == 0) throw Error("probe: no frame has been filtered yet");
-  if (x < 0 || y < 0 || x >= surface_.width() || y >= surface_.height())
-    throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
-                std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
-  // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
-  const TrmvParams& p = params_.trmv;
-  const Component& c = component(stream);
-  Probe probe;
-  if (pass == "trmv_spatial") {  // the second (vertical) 1-D pass, on the first one's output
-    const RgbPlane rows = trmv_spatial_axis(c.noisy, surface_, kTrmvHorizontal, p.spatial_radius, FloatPlane(),
-                                            p.spatial_sigma, params_.svgf);
-    trmv_spatial_pixel(rows, surface_, kTrmvVertical, p.spatial_radius, p.spatial_sigma, params_.svgf, x, y, &probe);
-  }
-  if (pass == "trmv_falloff") trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, p, x, y, &probe);
-  if (pass == "trmv_reshade") {  // the diffuse light's: the re-shaded history at a disoccluded pixel
-    glm::vec3 reshaded;
-    trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, x, y, reshaded, &probe);
-  }
-  if (pass == "trmv_temporal")
-    trmv_temporal_pixel(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p, x, y, &probe);
-  if (pass == "trmv_cleanup") trmv_cleanup_weights_pixel(c.temporal, c.alpha, p, x, y, &probe);
-  return probe;
+Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int level) const {
+  // "direct" names the visibility, direct light's noisy part.
+  return Method::probe(pass, x, y, stream == "direct" ? "visibility" : stream, level);
 }
 
 }  // namespace rtdr

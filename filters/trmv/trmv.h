@@ -40,7 +40,7 @@ namespace rtdr {
 InputChannels trmv_input_channels();
 // The passes trmv runs with these parameters, in order (filters/passes.h), and the channels of their dump layers
 // and the tone-mapped colour: what both back ends dump (TrmvFilter, gpu/trmv_vulkan.h).
-std::vector<std::string> trmv_passes(const TrmvParams& params);
+std::vector<PassUse> trmv_passes(const TrmvParams& params);
 std::vector<std::string> trmv_dump_channels(const TrmvParams& params);
 // The colour from the three filtered components: direct = direct.shading x V, indirect = diffuse + glossy,
 // remodulated with the albedo, emission added [TRMV21 Sec. 4.1] [SVGF17 Sec. 3]. `visibility` is (V, V, V).
@@ -57,10 +57,9 @@ class TrmvFilter : public Method {
   void reset() override;
   std::unique_ptr<Method> clone() const override { return std::make_unique<TrmvFilter>(*this); }
   // `stream` is the component: "visibility" (or "direct", whose noisy part it is), "diffuse" or "glossy"; `level`
-  // is unused.
+  // is unused. The pass log's probe (filters/pass_log.h).
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
-  std::vector<std::string> probe_streams() const override { return {"visibility", "diffuse", "glossy"}; }
   InputChannels inputs() const override { return trmv_input_channels(); }
   std::vector<std::string> dump_channels() const override;
 
@@ -76,14 +75,17 @@ class TrmvFilter : public Method {
     TrmvTemporalOutput temporal;  // cbar_i, the fetched and clamped histories
     TrmvCleanupOutput cleaned;    // after the clean-up [TRMV21 Eq. 7-8]
   };
-  // Runs one component's passes on c.noisy, c.motion and c.alpha.
-  const RgbPlane& filter_component(Component& c);
+  // The layers a component's passes write (filters/passes.h): the spatial filter's, the temporal pass's blend and
+  // clamped history, the clean-up's w_A (the visibility's alone, else null), w_C and result.
+  struct Layers {
+    const LayerDecl *spatial, *temporal, *clamped, *w_a, *w_c, *cleaned;
+  };
+  // Runs one component's passes on c.noisy, c.motion and c.alpha, and logs them as component `name`.
+  const RgbPlane& filter_component(Component& c, const std::string& name, const Layers& layers);
   // The visibility's motion and alpha^V for this frame (the falloff pass when the shadow vector drives it).
-  void prepare_visibility(const Frame& in, FloatPlane& theta);
+  void prepare_visibility(const Frame& in);
   // The diffuse light's motion: the dual vector, with the cones' re-shaded history (the re-shade pass).
   void prepare_diffuse(const Frame& in);
-  void dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const;
-  const Component& component(const std::string& stream) const;
 
   MethodParams params_;
   SurfacePlanes surface_;
@@ -97,6 +99,8 @@ class TrmvFilter : public Method {
   TrmvReceiver receiver_;                 // this frame's s_i, n(s_i), for Eq. 4
   TrmvPreviousPositions prev_positions_;  // the previous frame's `position` and id.mesh, for Eq. 4
   TrmvPreviousPositions seen_prev_positions_;  // those the falloff pass read this frame
+  FloatPlane theta_;                      // the falloff's theta [TRMV21 Eq. 4]
+  RgbPlane color_, display_;              // the remodulated colour and its tone-mapped display
 };
 
 }  // namespace rtdr

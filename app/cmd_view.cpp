@@ -11,8 +11,9 @@ namespace rtdr {
 namespace {
 
 void run_view(const ViewOptions& o) {
-  // The page's files first: a broken install fails before minutes of filtering, not after.
+  // The page's files and the port first: a broken install or a taken port fails before minutes of filtering.
   const std::map<std::string, std::string> assets = view_asset_routes(default_view_asset_dirs());
+  require_port_free(o.port);
   std::printf("rtdr view: filtering %s with %s, keeping every pass of every frame\n", o.in.c_str(), o.method.c_str());
   std::fflush(stdout);
   const ViewSequence view(o, [](const std::string& line) {

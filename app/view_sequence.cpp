@@ -93,22 +93,31 @@ nlohmann::json group_layers(const std::vector<std::string>& channels) {
   return layers;
 }
 
-// The layers that the runs of pass `pass` in `log` wrote, in the order they ran: each declared layer for every
-// stream and level it was written for.
-nlohmann::json pass_layers(const PassLog& log, const std::string& pass) {
+// The layers of pass `pass` that `frame` holds: each declared layer for every stream of `streams` and every level
+// it was written for. (The frame is the method's output and dump: the dump holds what the pass log logged, the
+// output the colour and display that modulate, tone map and TAA make.)
+nlohmann::json pass_layers(const PassDecl& pass, const Frame& frame, const std::vector<std::string>& streams) {
   nlohmann::json layers = nlohmann::json::array();
-  for (const PassRun& run : log.runs()) {
-    if (run.pass().name != pass) continue;
-    for (const auto& [layer, name] : run.written())
-      layers.push_back({{"name", name},
-                        {"pattern", layer->pattern},
-                        {"kind", layer->type == LayerType::Rgb ? "rgb" : "scalar"},
-                        {"meaning", layer->meaning},
-                        {"cite", layer->cite},
-                        {"stream", run.stream()},
-                        {"level", std::max(run.level(), 0)},
-                        // Values the tone map made, in [0, 1]: shown without another tone map.
-                        {"display_referred", layer->cite.find("Reinhard02") != std::string_view::npos}});
+  for (const LayerDecl* layer : pass.writes) {
+    const bool per_stream = layer->pattern.find("<s>") != std::string_view::npos;
+    const bool per_level = layer->pattern.find("<i>") != std::string_view::npos;
+    for (const std::string& stream : per_stream ? streams : std::vector<std::string>{""}) {
+      for (int level = per_level ? 0 : -1; level < (per_level ? 64 : 0); ++level) {
+        const std::vector<std::string> channels = layer_channels(*layer, stream, level);
+        const bool present = std::all_of(channels.begin(), channels.end(), [&](const auto& c) { return frame.has(c); });
+        if (!present) break;
+        layers.push_back({{"name", layer_name(*layer, stream, level)},
+                          {"pattern", layer->pattern},
+                          {"kind", layer->type == LayerType::Rgb ? "rgb" : "scalar"},
+                          {"meaning", layer->meaning},
+                          {"cite", layer->cite},
+                          {"stream", stream},
+                          {"level", std::max(level, 0)},
+                          // Values the tone map made, in [0, 1]: shown without another tone map.
+                          {"display_referred", layer->cite.find("Reinhard02") != std::string_view::npos}});
+        if (!per_level) break;
+      }
+    }
   }
   return layers;
 }
@@ -231,11 +240,12 @@ void ViewSequence::add_reference(FrameState& s) const {
 
 void ViewSequence::make_info() {
   const FrameState& first = frames_.front();
+  const std::vector<std::string> streams = log_streams(first.state->passes());
   info_ = {{"method", options_.method},
            {"in", options_.in},
            {"width", first.input.width()},
            {"height", first.input.height()},
-           {"streams", log_streams(first.state->passes())},
+           {"streams", streams},
            {"reference", !options_.ref.empty()},
            {"port", !options_.port_dumps.empty()},
            {"frames", nlohmann::json::array()}};
@@ -250,19 +260,17 @@ void ViewSequence::make_info() {
                     {"cite", ""},
                     {"description", "the layers the method reads from --in (docs/buffers.md)"},
                     {"layers", group_layers(first.state->inputs().floats)}});
-  for (const std::string& name : first.state->passes().passes()) {
+  for (const std::string& name : first.state->probe_passes()) {
     const PassDecl& pass = find_pass(name);
-    const auto& runs = first.state->passes().runs();
-    const bool probed = std::any_of(runs.begin(), runs.end(), [&](const PassRun& r) { return r.pass().name == name && r.probed(); });
     groups.push_back({{"name", name},
                       {"source", "golden"},
-                      {"probe", probed},
+                      {"probe", true},
                       {"cite", pass.cite},
                       {"golden", pass.golden},
                       {"scope", scope_name(pass.scope)},
                       {"reads", pass.reads},
                       {"description", pass.probe},
-                      {"layers", pass_layers(first.state->passes(), name)}});
+                      {"layers", pass_layers(pass, first.golden, streams)}});
   }
   // What the passes probed do not list (trmv's colour and display, made by passes it does not probe): "output".
   std::set<std::string> listed;

@@ -1,6 +1,7 @@
 // The HTTP server of `rtdr view`. See view_server.h; the routes and their answers are in docs/view.md.
 #include "app/view_server.h"
 
+#include "core/data_path.h"
 #include "core/error.h"
 #include "filters/equations.h"
 
@@ -8,7 +9,14 @@
 #include <httplib.h>
 #endif
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -100,7 +108,32 @@ nlohmann::json equations_json() {
 
 #endif  // RTDR_VIEW
 
+std::string cannot_listen(int port) {
+  return "cannot listen on 127.0.0.1:" + std::to_string(port) + " (in use? --port 0 takes any free port)";
+}
+
+// SO_REUSEADDR alone, so that a restarted view gets its port back at once, and a second one does not share it:
+// httplib's default adds SO_REUSEPORT, with which two servers listen on one port and split its connections.
+void reuse_address_only(int sock) {
+  const int yes = 1;
+  setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+}
+
 }  // namespace
+
+void require_port_free(int port) {
+  if (port == 0) return;
+  const int sock = socket(AF_INET, SOCK_STREAM, 0);
+  if (sock < 0) throw Error("cannot open a socket: " + std::string(std::strerror(errno)));
+  reuse_address_only(sock);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(uint16_t(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool free = bind(sock, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0 && listen(sock, 1) == 0;
+  close(sock);
+  if (!free) throw Error(cannot_listen(port));
+}
 
 bool view_request_allowed(const std::string& target, const std::string& path) {
   if (target.empty() || target[0] != '/' || path.empty() || path[0] != '/') return false;
@@ -111,7 +144,7 @@ bool view_request_allowed(const std::string& target, const std::string& path) {
 
 #if RTDR_VIEW
 
-ViewAssetDirs default_view_asset_dirs() { return {RTDR_VIEW_ASSETS_DIR, RTDR_KATEX_DIR}; }
+ViewAssetDirs default_view_asset_dirs() { return {data_path("view", RTDR_VIEW_ASSETS_DIR), RTDR_KATEX_DIR}; }
 
 std::map<std::string, std::string> view_asset_routes(const ViewAssetDirs& dirs) {
   std::map<std::string, std::string> routes;
@@ -137,6 +170,7 @@ std::map<std::string, std::string> view_asset_routes(const ViewAssetDirs& dirs) 
 void serve_view(const ViewSequence& view, const std::map<std::string, std::string>& assets, int port,
                 const std::function<void(int)>& ready) {
   httplib::Server server;
+  server.set_socket_options([](socket_t sock) { reuse_address_only(sock); });
   server.set_payload_max_length(4096);  // every route is a GET: no request carries a body worth reading
   server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     if (view_request_allowed(req.target, req.path)) return httplib::Server::HandlerResponse::Unhandled;
@@ -166,7 +200,7 @@ void serve_view(const ViewSequence& view, const std::map<std::string, std::strin
 
   const int bound = port == 0 ? server.bind_to_any_port("127.0.0.1") : (server.bind_to_port("127.0.0.1", port) ? port : -1);
   if (bound <= 0)
-    throw Error("cannot listen on 127.0.0.1:" + std::to_string(port) + " (in use? --port 0 takes any free port)");
+    throw Error(cannot_listen(port));
   ready(bound);
   if (!server.listen_after_bind()) throw Error("the server on 127.0.0.1:" + std::to_string(bound) + " stopped");
 }

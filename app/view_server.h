@@ -32,6 +32,10 @@ std::map<std::string, std::string> view_asset_routes(const ViewAssetDirs& dirs);
 // '%' left after decoding (a second encoding: "%252e%252e").
 bool view_request_allowed(const std::string& target, const std::string& path);
 
+// Throws rtdr::Error, as serve_view would, when 127.0.0.1:`port` cannot be listened on (taken by another server):
+// run before the filtering, so that a taken port is said at once, not minutes later. Port 0 is always free.
+void require_port_free(int port);
+
 // Serves `view` on 127.0.0.1:`port` (0: any free port) until the process is stopped; calls `ready` with the port
 // once it listens. Throws rtdr::Error when it cannot listen.
 void serve_view(const ViewSequence& view, const std::map<std::string, std::string>& assets, int port,

@@ -51,9 +51,9 @@ class TrmvVulkan : public VulkanMethod {
 
  private:
   struct Buffers;  // every device plane, made for one frame size
-  // Records the three components' spatial filter, temporal blends and clean-ups into batch_; `alpha_v` is the
-  // visibility's alpha plane, or null.
-  void record_components(const GpuBuffer* alpha_v);
+  // Records the visibility's spatial filter and the three components' temporal blends and clean-ups into batch_;
+  // `alpha_v` is the visibility's alpha plane, or null; `per_axis_sigma`: the penumbra filter's std per pixel.
+  void record_components(const GpuBuffer* alpha_v, bool per_axis_sigma);
   void dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const;
 
   VulkanContext& context_;

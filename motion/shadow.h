@@ -126,7 +126,8 @@ void write_motion_and_validity(Frame& frame, const std::string& layer, const std
 std::vector<ShadowMotion> shadow_motion(const FrameGeometry& geometry, const Frame& frame);
 
 // Adds motion.shadow.X, motion.shadow.Y and motion.shadow.valid (uint 0/1) to a frame that holds the path.*
-// layers (trace_layers), then the splatted field motion.shadow_splat.X/Y and .valid (motion/shadow_splat.h).
+// layers (trace_layers). The splat that spreads it to the pixels around each shadow (motion/shadow_splat.h) is the
+// filter's: its window is the shadow filter's (filters/trmv/trmv.h).
 void write_shadow_motion_layers(const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

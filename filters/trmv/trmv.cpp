@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "filters/passes.h"
 #include "filters/svgf/modulate.h"
+#include "filters/trmv/atrous.h"
 #include "filters/trmv/spatial.h"
 
 #include <algorithm>
@@ -37,12 +38,63 @@ RgbPlane trmv_remodulate(const Frame& in, const RgbPlane& visibility, const RgbP
                     rgb_plane(in, "emission"));
 }
 
-Vec2Plane glossy_or_surface_motion(const Frame& in, const Vec2Plane& surface) {
-  Vec2Plane m = xy_plane(in, "motion.glossy");
-  const UIntPlane& valid = in.uint_channel("motion.glossy.valid");
-  for (size_t i = 0; i < m.data.size(); ++i)
-    if (valid.data[i] == 0) m.data[i] = surface.data[i];
+namespace {
+
+// The history test of a vector (temporal.h), or none for forced reuse (history_test = 0).
+uint32_t test_of(const TrmvParams& p, uint32_t test) { return p.history_test != 0 ? test : kTrmvTestNone; }
+
+// `effect` where `use` is 1 (with `effect_test`), else the surface motion (with SVGF's test).
+TrmvMotion effect_or_surface(const Vec2Plane& effect, const UIntPlane& use, const Vec2Plane& surface,
+                             uint32_t effect_test, const TrmvParams& p) {
+  TrmvMotion m{surface, {}, UIntPlane(surface.width, surface.height), {}, {}};
+  for (size_t i = 0; i < m.motion.data.size(); ++i) {
+    const bool effect_here = use.data[i] != 0;
+    if (effect_here) m.motion.data[i] = effect.data[i];
+    m.test.data[i] = test_of(p, effect_here ? effect_test : kTrmvTestSurface);
+  }
   return m;
+}
+
+}  // namespace
+
+bool trmv_uses_splat(const TrmvParams& p) { return trmv_uses_shadow(p.motion) || p.shadow_filter == 1; }
+
+TrmvSplatPlanes trmv_splat_planes(const Frame& in, const SurfacePlanes& surface, FloatPlane carried) {
+  return {xy_plane(in, "motion.shadow"), in.uint_channel("motion.shadow.valid"), surface.motion,
+          in.uint_channel("id.instance"),  surface.normal,                       std::move(carried)};
+}
+
+TrmvMotion trmv_visibility_motion(const TrmvSplatOutput& splat, const Vec2Plane& surface, const TrmvParams& p) {
+  if (!trmv_uses_shadow(p.motion)) {  // the surface motion everywhere [TRMV21 Eq. 1]
+    const UIntPlane none(surface.width, surface.height, 0u);
+    return effect_or_surface(surface, none, surface, kTrmvTestSurface, p);
+  }
+  // The splatted shadow motion where a vector landed [TRMV21 Eq. 3, Sec. 4.1]: Eq. 4 handles another receiver, so no
+  // test unless shadow_receiver_test asks for the same mesh (temporal.h).
+  const uint32_t shadow_test = p.shadow_receiver_test != 0 ? kTrmvTestMesh : kTrmvTestNone;
+  return effect_or_surface(splat.motion, splat.landed, surface, shadow_test, p);
+}
+
+TrmvMotion trmv_diffuse_motion(const Frame& in, const Vec2Plane& surface, const TrmvParams& p) {
+  if (!trmv_uses_dual(p.motion)) {
+    const UIntPlane none(surface.width, surface.height, 0u);
+    return effect_or_surface(surface, none, surface, kTrmvTestSurface, p);
+  }
+  // x^O at disoccluded pixels, with the same mesh as its test [TRMV21 Eq. 6]; the surface motion elsewhere.
+  TrmvMotion m = effect_or_surface(xy_plane(in, "motion.dual"), in.uint_channel("motion.dual.valid"), surface,
+                                   kTrmvTestMesh, p);
+  return m;
+}
+
+TrmvMotion trmv_glossy_motion(const Frame& in, const Vec2Plane& surface, const TrmvParams& p) {
+  if (!trmv_uses_glossy(p.motion)) {
+    const UIntPlane none(surface.width, surface.height, 0u);
+    return effect_or_surface(surface, none, surface, kTrmvTestSurface, p);
+  }
+  // Eq. 5's draw, or the lobe's centre mu (glossy_draw = 0), where Eq. 5 gave a vector; the reflector's mesh as its
+  // test [TRMV21 Eq. 5].
+  const Vec2Plane glossy = xy_plane(in, p.glossy_draw != 0 ? "motion.glossy" : "motion.glossy_mean");
+  return effect_or_surface(glossy, in.uint_channel("motion.glossy.valid"), surface, kTrmvTestMesh, p);
 }
 
 InputChannels trmv_input_channels() {
@@ -51,11 +103,14 @@ InputChannels trmv_input_channels() {
   InputChannels c = common_input_channels(
       {"indirect.diffuse.R", "indirect.diffuse.G", "indirect.diffuse.B", "indirect.glossy.R", "indirect.glossy.G",
        "indirect.glossy.B", "position.X", "position.Y", "position.Z", "geonormal.X", "geonormal.Y", "geonormal.Z",
-       "direct.shading.R", "direct.shading.G", "direct.shading.B", "direct.visibility", "motion.shadow_splat.X",
-       "motion.shadow_splat.Y", "motion.dual.X", "motion.dual.Y", "motion.glossy.X", "motion.glossy.Y",
-       "path.direction.X", "path.direction.Y", "path.direction.Z", "path.incoming.R", "path.incoming.G",
-       "path.incoming.B", "path.pdf"});
-  c.uints.insert(c.uints.end(), {"motion.shadow_splat.valid", "motion.dual.valid", "motion.glossy.valid"});
+       "direct.shading.R", "direct.shading.G", "direct.shading.B", "direct.visibility", "motion.shadow.X",
+       "motion.shadow.Y", "motion.dual.X", "motion.dual.Y", "motion.glossy.X", "motion.glossy.Y",
+       "motion.glossy_mean.X", "motion.glossy_mean.Y", "glossy.footprint.XX", "glossy.footprint.XY",
+       "glossy.footprint.YY", "path.light.X", "path.light.Y", "path.light.Z", "path.blocker.X", "path.blocker.Y",
+       "path.blocker.Z", "path.direction.X", "path.direction.Y", "path.direction.Z", "path.incoming.R",
+       "path.incoming.G", "path.incoming.B", "path.pdf"});
+  c.uints.insert(c.uints.end(), {"id.instance", "motion.shadow.valid", "motion.dual.valid", "motion.glossy.valid",
+                                 "glossy.footprint.valid", "path.light.instance", "path.blocker.instance"});
   // An engine that does not split its indirect light puts it all in indirect.diffuse.
   for (const char* channel : {"indirect.diffuse.R", "indirect.diffuse.G", "indirect.diffuse.B", "indirect.glossy.R",
                               "indirect.glossy.G", "indirect.glossy.B"})
@@ -78,29 +133,66 @@ void TrmvFilter::reset() {
   cones_ = {};
 }
 
+namespace {
+
+// The separable joint bilateral at the shadow filter's window [TRMV21 Sec. 5] (spatial.h).
+RgbPlane bilateral(const RgbPlane& c, const SurfacePlanes& s, const TrmvWindows& w, const SvgfParams& edges) {
+  return trmv_spatial_pass(c, s, w.shadow_radius, w.shadow_sigma, edges);
+}
+
+}  // namespace
+
 const RgbPlane& TrmvFilter::filter_component(Component& c) {
   const TrmvParams& p = params_.trmv;
-  // 1. The spatial filter of the current frame: c~_i.
-  time_pass("trmv_spatial", [&] { c.filtered = trmv_spatial_pass(c.noisy, surface_, p, params_.svgf); });
-  // 2-3. The history along the component's motion, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2, Sec. 5].
+  // 2-3. The history along the component's motion, tested, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2,
+  // Sec. 5].
   c.seen_history = std::move(c.history);  // replaced below by this frame's
   time_pass("trmv_temporal", [&] {
-    c.temporal = trmv_temporal_pass(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p);
+    c.temporal = trmv_temporal_pass(c.filtered, surface_, c.motion, c.seen_history, c.alpha, p, params_.svgf);
   });
-  // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8].
-  time_pass("trmv_cleanup", [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, p, params_.svgf); });
+  // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8], at its scaled window.
+  TrmvParams cleanup = p;
+  cleanup.cleanup_size = 2 * windows_.cleanup_radius + 1;
+  time_pass("trmv_cleanup",
+            [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, cleanup, params_.svgf); });
   // Next frame's history: before the clean-up unless asked otherwise (history_after_cleanup).
   c.history.color = p.history_after_cleanup != 0 ? c.cleaned.color : c.temporal.color;
-  c.history.mesh = surface_.mesh;
+  c.history.surface = surface_;
   return c.cleaned.color;
 }
 
 void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
   const TrmvParams& p = params_.trmv;
-  // Along the shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the constant
-  // alpha. A pixel on which no shadow vector landed has the surface motion in motion.shadow_splat.
-  shadow_motion_ = {xy_plane(in, "motion.shadow_splat"), in.uint_channel("motion.shadow_splat.valid"), {}, {}};
-  receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh};
+  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
+  // The penumbra's width W at every in-shadow pixel [LLK*19] (shadow_filter = 1), which the splat carries.
+  const bool penumbra = p.shadow_filter == 1;
+  if (penumbra) {
+    penumbra_inputs_ = TrmvPenumbraInputs::from_frame(in);
+    time_pass("trmv_penumbra", [&] { penumbra_ = trmv_penumbra_pass(penumbra_inputs_); });
+  }
+  // The splat: m^V (and W) spread over the shadow filter's window, on each receiving surface [TRMV21 Sec. 4.1].
+  splat_ = {};
+  if (trmv_uses_splat(p)) {
+    splat_inputs_ = trmv_splat_planes(in, surface_, penumbra ? penumbra_.width : FloatPlane());
+    time_pass("trmv_splat", [&] { splat_ = trmv_splat_pass(splat_inputs_, windows_.splat_size); });
+  }
+  // 1. The spatial filter: the 31x31 separable joint bilateral [TRMV21 Sec. 5], or its std per pixel and axis from
+  //    the splatted penumbra (penumbra.h).
+  time_pass("trmv_spatial", [&] {
+    if (!penumbra) {
+      visibility_.filtered = bilateral(visibility_.noisy, surface_, windows_, params_.svgf);
+      return;
+    }
+    trmv_penumbra_sigmas(splat_.carried, penumbra_.metres, kTrmvPenumbraSigmaFloor, windows_.shadow_sigma, sigma_x_,
+                         sigma_y_);
+    visibility_.filtered =
+        trmv_spatial_pass(visibility_.noisy, surface_, windows_.shadow_radius, sigma_x_, sigma_y_, params_.svgf);
+  });
+  // Along the splatted shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the
+  // constant alpha.
+  visibility_.motion = trmv_visibility_motion(splat_, surface_.motion, p);
+  shadow_motion_ = {visibility_.motion.motion, splat_.landed, {}, {}, {}};
+  receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh, surface_.motion};
   seen_prev_positions_ = std::move(prev_positions_);  // replaced after the frame by this frame's
   visibility_.alpha = {};
   if (trmv_uses_shadow(p.motion))
@@ -109,31 +201,50 @@ void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
       visibility_.alpha = std::move(falloff.alpha_v);
       theta = std::move(falloff.theta);
     });
-  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
-  visibility_.motion = {trmv_uses_shadow(p.motion) ? shadow_motion_.motion : surface_.motion, {}, {}, {}};
 }
 
 void TrmvFilter::prepare_diffuse(const Frame& in) {
   const TrmvParams& p = params_.trmv;
   diffuse_.noisy = rgb_plane(in, "indirect.diffuse");
+  // 1. The spatial filter: "a 4-level a-trous wavelet filter, essentially 32x32" [TRMV21 Sec. 5] (atrous.h).
+  time_pass("trmv_atrous", [&] {
+    diffuse_.filtered = p.diffuse_filter == 1
+                            ? trmv_atrous_pass(diffuse_.noisy, surface_, windows_.atrous_levels, params_.svgf)
+                            : bilateral(diffuse_.noisy, surface_, windows_, params_.svgf);
+  });
   seen_cones_ = std::move(cones_);  // replaced below by this frame's
-  if (!trmv_uses_dual(p.motion)) {
-    diffuse_.motion = {surface_.motion, {}, {}, {}};
-    return;
-  }
-  // Along the dual motion [TRMV21 Eq. 6]: x^O at disoccluded pixels, the surface motion elsewhere (motion/dual.h).
-  dual_motion_ = {xy_plane(in, "motion.dual"), in.uint_channel("motion.dual.valid"), {}, {}};
-  diffuse_.motion = {dual_motion_.motion, {}, {}, {}};
-  if (p.cones == 0) return;  // the colour at x^O (Fig. 6's repetition)
-  // The cones: a disoccluded pixel's history re-shaded from the cones at x^O [TRMV21 Sec. 4.3, Eq. 11].
+  diffuse_.motion = trmv_diffuse_motion(in, surface_.motion, p);
+  if (!trmv_uses_dual(p.motion) || p.cones == 0) return;  // cones = 0: the colour at x^O (Fig. 6's repetition)
+  // The cones: a disoccluded pixel's history re-shaded from the cones at x^O [TRMV21 Sec. 4.3, Eq. 11], each cone
+  // filtered as the diffuse light is.
+  dual_motion_ = {xy_plane(in, "motion.dual"), in.uint_channel("motion.dual.valid"), {}, {}, {}};
   cone_inputs_ = TrmvConeInputs::from_frame(in);
+  const TrmvConeFilter filter{p.diffuse_filter == 1, windows_.atrous_levels, windows_.shadow_radius,
+                              windows_.shadow_sigma};
   time_pass("trmv_reshade", [&] {
     TrmvReshadeOutput r =
-        trmv_reshade_pass(cone_inputs_, surface_, dual_motion_, seen_cones_, cone_layout_, p, params_.svgf);
+        trmv_reshade_pass(cone_inputs_, surface_, dual_motion_, seen_cones_, cone_layout_, filter, p, params_.svgf);
     cones_ = std::move(r.history);
+    filtered_cones_ = std::move(r.filtered);
     diffuse_.motion.reshaded = std::move(r.reshaded);
     diffuse_.motion.reshaded_valid = std::move(r.reshaded_valid);
   });
+}
+
+void TrmvFilter::prepare_glossy(const Frame& in) {
+  const TrmvParams& p = params_.trmv;
+  glossy_.noisy = rgb_plane(in, "indirect.glossy");
+  // 1. The spatial filter: the BRDF lobe's footprint [TRMV21 Sec. 5, LLK*19] (reflection.h).
+  time_pass("trmv_reflection", [&] {
+    if (p.glossy_filter == 1) {
+      footprint_ = TrmvFootprint::from_frame(in);
+      glossy_.filtered =
+          trmv_reflection_pass(glossy_.noisy, surface_, footprint_, windows_.glossy_radius, params_.svgf);
+    } else {
+      glossy_.filtered = bilateral(glossy_.noisy, surface_, windows_, params_.svgf);
+    }
+  });
+  glossy_.motion = trmv_glossy_motion(in, surface_.motion, p);
 }
 
 Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
@@ -145,18 +256,16 @@ Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
                 std::to_string(history.height) + ")");
   if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
   surface_ = SurfacePlanes::from_frame(in);
-  const TrmvParams& p = params_.trmv;
+  windows_ = trmv_windows(params_.trmv, in.height());
 
   FloatPlane theta;
   prepare_visibility(in, theta);
   const RgbPlane& v = filter_component(visibility_);
   prepare_diffuse(in);
   const RgbPlane& diffuse = filter_component(diffuse_);
-  glossy_.noisy = rgb_plane(in, "indirect.glossy");
-  glossy_.motion = {trmv_uses_glossy(p.motion) ? glossy_or_surface_motion(in, surface_.motion) : surface_.motion,
-                    {}, {}, {}};
+  prepare_glossy(in);
   const RgbPlane& glossy = filter_component(glossy_);
-  prev_positions_ = {receiver_.position, surface_.mesh};
+  prev_positions_ = {receiver_.position, receiver_.normal, surface_.mesh};
 
   RgbPlane color, display;
   time_pass("modulate", [&] { color = trmv_remodulate(in, v, diffuse, glossy); });
@@ -179,6 +288,19 @@ void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tone
     for (size_t i = 0; i < rgb.data.size(); ++i) out.data[i] = rgb.data[i].x;
     return out;
   };
+  if (p.shadow_filter == 1) {
+    dump_layer(dump, kTrmvPenumbraWidth, {}, -1, penumbra_.width);
+    dump_layer(dump, kTrmvSigmaX, {}, -1, sigma_x_);
+    dump_layer(dump, kTrmvSigmaY, {}, -1, sigma_y_);
+  }
+  if (trmv_uses_splat(p)) {
+    FloatPlane mx(splat_.motion.width, splat_.motion.height), my = mx, landed = mx;
+    for (size_t i = 0; i < mx.data.size(); ++i)
+      mx.data[i] = splat_.motion.data[i].x, my.data[i] = splat_.motion.data[i].y, landed.data[i] = float(splat_.landed.data[i]);
+    dump_layer(dump, kTrmvSplatX, {}, -1, mx);
+    dump_layer(dump, kTrmvSplatY, {}, -1, my);
+    dump_layer(dump, kTrmvSplatLanded, {}, -1, landed);
+  }
   dump_layer(dump, kTrmvVisibilitySpatial, {}, -1, first(visibility_.filtered));
   dump_layer(dump, kTrmvDiffuseSpatial, {}, -1, diffuse_.filtered);
   dump_layer(dump, kTrmvGlossySpatial, {}, -1, glossy_.filtered);
@@ -204,10 +326,14 @@ void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tone
 }
 
 std::vector<std::string> trmv_passes(const TrmvParams& p) {
-  std::vector<std::string> passes = {"trmv_spatial"};
+  std::vector<std::string> passes;
+  if (p.shadow_filter == 1) passes.push_back("trmv_penumbra");
+  if (trmv_uses_splat(p)) passes.push_back("trmv_splat");
+  passes.push_back("trmv_spatial");
   if (trmv_uses_shadow(p.motion)) passes.push_back("trmv_falloff");
+  passes.push_back("trmv_atrous");
   if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back("trmv_reshade");
-  passes.insert(passes.end(), {"trmv_temporal", "trmv_cleanup"});
+  passes.insert(passes.end(), {"trmv_reflection", "trmv_temporal", "trmv_cleanup"});
   return passes;
 }
 
@@ -231,7 +357,7 @@ const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) co
   throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), diffuse, glossy");
 }
 
-Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int) const {
+Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int level) const {
   const std::vector<std::string> passes = probe_passes();
   if (std::find(passes.begin(), passes.end(), pass) == passes.end()) {
     find_pass(pass);  // throws, listing the passes, when there is no such pass at all
@@ -244,19 +370,38 @@ Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string
   // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
   const TrmvParams& p = params_.trmv;
   const Component& c = component(stream);
+  const SvgfParams& edges = params_.svgf;
   Probe probe;
-  if (pass == "trmv_spatial") {  // the second (vertical) 1-D pass, on the first one's output
-    const RgbPlane rows = trmv_spatial_axis(c.noisy, surface_, kTrmvHorizontal, p.spatial_radius, FloatPlane(),
-                                            p.spatial_sigma, params_.svgf);
-    trmv_spatial_pixel(rows, surface_, kTrmvVertical, p.spatial_radius, p.spatial_sigma, params_.svgf, x, y, &probe);
+  if (pass == "trmv_penumbra") {
+    float width;
+    glm::vec2 metres;
+    trmv_penumbra_pixel(penumbra_inputs_, trmv_light_diameters(penumbra_inputs_.light, penumbra_inputs_.light_id), x,
+                        y, width, metres, &probe);
+  }
+  if (pass == "trmv_splat") trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, &probe);
+  if (pass == "trmv_spatial") {  // the visibility's; the second (vertical) 1-D pass, on the first one's output
+    const int r = windows_.shadow_radius;
+    const bool per_pixel = p.shadow_filter == 1;
+    const RgbPlane rows = trmv_spatial_axis(visibility_.noisy, surface_, kTrmvHorizontal, r,
+                                            per_pixel ? sigma_x_ : FloatPlane(), windows_.shadow_sigma, edges);
+    const float sigma = per_pixel ? sigma_y_.at(x, y) : windows_.shadow_sigma;
+    trmv_spatial_pixel(rows, surface_, kTrmvVertical, r, sigma, edges, x, y, &probe);
   }
   if (pass == "trmv_falloff") trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, p, x, y, &probe);
+  if (pass == "trmv_atrous") {  // the diffuse light's, at `level` (the last by default), on the levels before it
+    const int last = windows_.atrous_levels - 1, at = level < 0 ? last : std::min(level, last);
+    if (p.diffuse_filter == 1)
+      trmv_atrous_pixel(trmv_atrous_pass(diffuse_.noisy, surface_, at, edges), surface_, at, edges, x, y, &probe);
+  }
   if (pass == "trmv_reshade") {  // the diffuse light's: the re-shaded history at a disoccluded pixel
     glm::vec3 reshaded;
-    trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, x, y, reshaded, &probe);
+    trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, trmv_cones_of(filtered_cones_, x, y),
+                       p.cone_transfer == 0, x, y, reshaded, &probe);
   }
+  if (pass == "trmv_reflection" && p.glossy_filter == 1)
+    trmv_reflection_pixel(glossy_.noisy, surface_, footprint_, windows_.glossy_radius, edges, x, y, &probe);
   if (pass == "trmv_temporal")
-    trmv_temporal_pixel(c.filtered, surface_.mesh, c.motion, c.seen_history, c.alpha, p, x, y, &probe);
+    trmv_temporal_pixel(c.filtered, surface_, c.motion, c.seen_history, c.alpha, p, edges, x, y, &probe);
   if (pass == "trmv_cleanup") trmv_cleanup_weights_pixel(c.temporal, c.alpha, p, x, y, &probe);
   return probe;
 }

@@ -25,13 +25,15 @@ BackendMethod make_backend_method(const std::string& backend, const std::string&
 
 std::unique_ptr<Method> make_vulkan_method(VulkanContext& context, const std::string& method,
                                            const MethodParams& params) {
-  if (method == "trmv") return std::make_unique<TrmvVulkan>(context, params);
-  return std::make_unique<SvgfVulkan>(context, method_options(method, params));  // checks the method's name first
+  // SVGF's pipelines run on SvgfVulkan; the one method with a class of its own (filters/method.cpp's registry),
+  // trmv, on TrmvVulkan.
+  if (is_svgf_pipeline(method)) return std::make_unique<SvgfVulkan>(context, method_options(method, params));
+  return std::make_unique<TrmvVulkan>(context, params);
 }
 
 std::unique_ptr<Method> SpecMethods::make(const MethodSpec& spec) {
   if (spec.backend == "cpu") return make_method(spec.name, spec_params(spec));
-  if (spec.name != "trmv") method_options(spec.name, spec_params(spec));  // checks the method's name first
+  is_svgf_pipeline(spec.name);  // checks the method's name before a Vulkan context is made
   std::unique_ptr<VulkanContext>& context = contexts_[spec.illumination];
   if (!context) {
     VulkanOptions vulkan;  // "" leaves the records Auto

@@ -29,13 +29,14 @@ namespace {
 // Vulkan pipeline, also the median of each of a frame's commands, in order, into *commands (left alone for other
 // methods); each frame's batch is submitted `submits` times and the last one timed (--submits).
 std::map<std::string, double> time_passes(Method& method, const std::vector<Frame>& frames, int warmup, int submits,
-                                          std::vector<std::pair<std::string, double>>* commands) {
+                                          std::vector<std::pair<std::string, double>>* commands, ProgressBar& bar) {
   std::map<std::string, std::vector<double>> times;
   std::vector<std::pair<std::string, std::vector<double>>> command_times;
   VulkanMethod* gpu = dynamic_cast<VulkanMethod*>(&method);
   if (gpu) gpu->set_submits(submits);
   for (size_t f = 0; f < frames.size(); ++f) {
     method.filter(frames[f]);
+    bar.advance();
     if (int(f) < warmup) continue;  // history still building: not timed
     if (gpu) {
       const auto& last = gpu->command_times();
@@ -57,6 +58,22 @@ std::map<std::string, double> time_passes(Method& method, const std::vector<Fram
   return medians;
 }
 
+// The rows of the table: the method's passes in the order it runs them, then anything else a back end reports
+// (the ports' "transfer"), then "total" last.
+std::vector<std::string> pass_order(const Method& method,
+                                    const std::map<std::string, std::map<std::string, double>>& medians) {
+  std::set<std::string> reported;
+  for (const auto& [backend, times] : medians)
+    for (const auto& [pass, ms] : times) reported.insert(pass);
+  std::vector<std::string> order;
+  for (const std::string& pass : method.probe_passes())
+    if (reported.erase(pass)) order.push_back(pass);
+  const bool total = reported.erase("total") > 0;
+  order.insert(order.end(), reported.begin(), reported.end());
+  if (total) order.push_back("total");
+  return order;
+}
+
 }  // namespace
 
 void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
@@ -76,20 +93,25 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     const bool gradients = method->reads_gradient_samples();
     RenderSettings settings;
     if (method->reads_shading_term()) settings.trace.shading_samples = kTrmvShadingSamples;
-    for (int f = 0; f < warmup + o.runs; ++f)
-      frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, settings, {},
-                                                               frames.empty() ? nullptr : &frames.back())
-                                 : render_frame(scene, f, size.width, size.height, settings));
     std::map<std::string, std::map<std::string, double>> medians;  // backend -> pass -> ms
     std::vector<std::pair<std::string, double>> commands;           // the Vulkan frame's commands, in order
     std::string devices;
-    for (const std::string& backend : backends) {
-      const BackendMethod m = make_backend_method(backend, o.method, o.params);
-      if (m.context)
-        devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
-                   shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs, " +
-                   illumination_records_name(m.context->illumination_records()) + " illumination records)";
-      medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands);
+    {  // the bar counts the frames rendered, then filtered on each back end; its line ends before the table
+      ProgressBar bar("bench filter " + name, uint64_t(warmup + o.runs) * (1 + backends.size()));
+      for (int f = 0; f < warmup + o.runs; ++f) {
+        frames.push_back(gradients ? render_frame_with_gradients(scene, f, size.width, size.height, settings, {},
+                                                                 frames.empty() ? nullptr : &frames.back())
+                                   : render_frame(scene, f, size.width, size.height, settings));
+        bar.advance();
+      }
+      for (const std::string& backend : backends) {
+        const BackendMethod m = make_backend_method(backend, o.method, o.params);
+        if (m.context)
+          devices += ", vulkan device " + m.context->device_name() + " (" + m.context->memory_summary() + ", " +
+                     shader_inputs_name(m.context->shader_inputs()) + "-buffer inputs, " +
+                     illumination_records_name(m.context->illumination_records()) + " illumination records)";
+        medians[backend] = time_passes(*m.method, frames, warmup, o.submits, &commands, bar);
+      }
     }
     std::printf("%s on %s at %dx%d, %d threads%s: median ms per frame over %d frames\n", spec.c_str(), name.c_str(),
                 size.width, size.height, thread_count(), devices.c_str(), o.runs);
@@ -98,10 +120,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
     const bool compare = medians.count("cpu") && medians.count("vulkan");
     if (compare) std::printf(" %10s", "cpu/vulkan");
     std::printf("\n");
-    std::set<std::string> passes;
-    for (const auto& [backend, times] : medians)
-      for (const auto& [pass, ms] : times) passes.insert(pass);
-    for (const std::string& pass : passes) {
+    for (const std::string& pass : pass_order(*method, medians)) {
       std::printf("  %-16s", pass.c_str());
       for (const std::string& backend : backends) {
         const auto it = medians[backend].find(pass);
@@ -128,6 +147,7 @@ void bench_filter(const BenchOptions& o, const Size size, std::ostream* csv) {
       for (const auto& [label, ms] : commands) std::printf(" %s %.3f", label.c_str(), ms);
       std::printf("\n");
     }
+    std::fflush(stdout);
   }
 }
 

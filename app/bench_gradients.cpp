@@ -30,7 +30,7 @@ struct StepTimes {
 };
 
 StepTimes time_steps(const BenchOptions& o, VulkanContext& context, const Scene& scene, const Frame& prev, int f,
-                     Size size, uint32_t seed) {
+                     Size size, uint32_t seed, ProgressBar* bar) {
   const PreviousFrame previous = PreviousFrame::from_frame(prev);
   const FrameGeometry current = rasterize_frame(scene, f, size.width, size.height);
   const int s = o.gradient.stratum_size;
@@ -38,23 +38,26 @@ StepTimes time_steps(const BenchOptions& o, VulkanContext& context, const Scene&
   StepTimes t;
   // Step 2 as gradient_samples runs it, stratum rows in parallel.
   std::vector<uint32_t> sources(size_t(strata_x) * size_t(strata_y));
-  t.select_ms = median_ms(o.warmup, o.runs, [&] {
-    parallel_rows(strata_y, [&](int sy) {
-      for (int sx = 0; sx < strata_x; ++sx)
-        sources[size_t(sy) * size_t(strata_x) + size_t(sx)] =
-            select_gradient_source(previous, sx, sy, o.gradient, seed, f);
-    });
-  });
-  t.select_vulkan_ms = median_device_ms(o.warmup, o.runs, [&](double* ms) {
-    select_gradient_sources_vulkan(context, previous, o.gradient, seed, f, ms);
-  });
+  t.select_ms = median_ms(
+      o.warmup, o.runs,
+      [&] {
+        parallel_rows(strata_y, [&](int sy) {
+          for (int sx = 0; sx < strata_x; ++sx)
+            sources[size_t(sy) * size_t(strata_x) + size_t(sx)] =
+                select_gradient_source(previous, sx, sy, o.gradient, seed, f);
+        });
+      },
+      bar);
+  t.select_vulkan_ms = median_device_ms(
+      o.warmup, o.runs,
+      [&](double* ms) { select_gradient_sources_vulkan(context, previous, o.gradient, seed, f, ms); }, bar);
   // Step 5 on the candidates of steps 2-4.
   const std::vector<GradientCandidate> candidates =
       candidate_list(gradient_candidates(scene, current, previous, o.gradient, seed));
-  t.merge_ms = median_ms(o.warmup, o.runs, [&] { gradient_winners(candidates, s, strata_x, strata_y); });
-  t.merge_vulkan_ms = median_device_ms(o.warmup, o.runs, [&](double* ms) {
-    gradient_winners_vulkan(context, candidates, size.width, size.height, s, ms);
-  });
+  t.merge_ms = median_ms(o.warmup, o.runs, [&] { gradient_winners(candidates, s, strata_x, strata_y); }, bar);
+  t.merge_vulkan_ms = median_device_ms(
+      o.warmup, o.runs,
+      [&](double* ms) { gradient_winners_vulkan(context, candidates, size.width, size.height, s, ms); }, bar);
   return t;
 }
 
@@ -68,31 +71,40 @@ void bench_gradients(const BenchOptions& o, const Size size, std::ostream* csv) 
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   // The ports' device, with --backend vulkan.
   const std::unique_ptr<VulkanContext> context = bench_ports_context(o, "select vk and merge vk are");
-  std::printf("%-14s %9s %10s %14s %7s %10s", "scene", "size", "plain ms", "gradients ms", "ratio", "gradients");
-  if (context) std::printf(" %9s %9s %9s %9s", "select ms", "select vk", "merge ms", "merge vk");
-  std::printf("   (median of %d runs, %d threads, strata of %d)\n", o.runs, thread_count(), o.gradient.stratum_size);
+  std::vector<std::pair<std::string, int>> columns = {
+      {"size", 9}, {"plain ms", 10}, {"gradients ms", 14}, {"ratio", 7}, {"gradients", 10}};
+  if (context) columns.insert(columns.end(), {{"select ms", 9}, {"select vk", 9}, {"merge ms", 9}, {"merge vk", 9}});
+  const std::vector<std::string> scenes = bench_scene_list(o.scenes);
+  const BenchTable table("scene", scenes, columns);
+  table.header(cell("(median of %d runs, %d threads, strata of %d)", o.runs, thread_count(), o.gradient.stratum_size));
   const RenderSettings settings;  // 1 spp, seed 0: what A-SVGF gets
-  for (const std::string& name : bench_scene_list(o.scenes)) {
+  for (const std::string& name : scenes) {
     const Scene scene = load_scene(name);
     const int f = int(scene.fps / 2);
     const Frame prev = render_frame_with_gradients(scene, f - 1, size.width, size.height, settings, o.gradient, nullptr);
-    Frame plain;
-    const double plain_ms =
-        median_ms(o.warmup, o.runs, [&] { plain = render_frame(scene, f, size.width, size.height, settings); });
-    Frame frame;
-    const double gradient_ms = median_ms(o.warmup, o.runs, [&] {
-      frame = render_frame_with_gradients(scene, f, size.width, size.height, settings, o.gradient, &prev);
-    });
+    Frame plain, frame;
+    double plain_ms = 0.0, gradient_ms = 0.0;
+    StepTimes steps;
+    {  // the bar's line ends before the row is printed
+      ProgressBar bar("bench gradients " + name,
+                      2 * calls_per_measurement(o) + (context ? 2 * calls_per_measurement(o, true) +
+                                                                    2 * calls_per_measurement(o) : 0));
+      plain_ms =
+          median_ms(o.warmup, o.runs, [&] { plain = render_frame(scene, f, size.width, size.height, settings); }, &bar);
+      gradient_ms = median_ms(
+          o.warmup, o.runs,
+          [&] { frame = render_frame_with_gradients(scene, f, size.width, size.height, settings, o.gradient, &prev); },
+          &bar);
+      if (context) steps = time_steps(o, *context, scene, prev, f, size, settings.seed, &bar);
+    }
     const double share = gradient_sample_share(frame);
     const double ratio = gradient_ms / plain_ms;
-    StepTimes steps;
-    if (context) steps = time_steps(o, *context, scene, prev, f, size, settings.seed);
-    std::printf("%-14s %4dx%-4d %10.1f %14.1f %7.3f %9.2f%%", name.c_str(), size.width, size.height, plain_ms,
-                gradient_ms, ratio, 100.0 * share);
+    std::vector<std::string> cells = {cell("%dx%d", size.width, size.height), cell("%.1f", plain_ms),
+                                      cell("%.1f", gradient_ms), cell("%.3f", ratio), cell("%.2f%%", 100.0 * share)};
     if (context)
-      std::printf(" %9.3f %9.3f %9.3f %9.3f", steps.select_ms, steps.select_vulkan_ms, steps.merge_ms,
-                  steps.merge_vulkan_ms);
-    std::printf("\n");
+      cells.insert(cells.end(), {cell("%.3f", steps.select_ms), cell("%.3f", steps.select_vulkan_ms),
+                                 cell("%.3f", steps.merge_ms), cell("%.3f", steps.merge_vulkan_ms)});
+    table.row(name, cells);
     if (csv) {
       const std::string row = "gradients," + name + ',' + std::to_string(size.width) + ',' +
                               std::to_string(size.height) + ',' + std::to_string(thread_count()) + ',';

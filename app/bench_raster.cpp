@@ -14,9 +14,11 @@
 namespace rtdr {
 
 void bench_raster(const BenchOptions& o, const Size size, std::ostream* csv) {
-  std::printf("%-10s %9s %12s %12s %12s %12s   (median ms of %d runs, %d threads)\n", "scene", "size",
-              "visibility", "gbuffer", "vis+gbuffer", "motion", o.runs, thread_count());
-  for (const std::string& name : bench_scene_list(o.scenes)) {
+  const std::vector<std::string> scenes = bench_scene_list(o.scenes);
+  const BenchTable table("scene", scenes,
+                         {{"size", 9}, {"visibility", 12}, {"gbuffer", 12}, {"vis+gbuffer", 12}, {"motion", 12}});
+  table.header(cell("(median ms of %d runs, %d threads)", o.runs, thread_count()));
+  for (const std::string& name : scenes) {
     const Scene scene = load_scene(name);
     // Mid-sequence of the first second, so animated scenes are caught moving.
     const FrameGeometry g = rasterize_frame(scene, int(scene.fps / 2), size.width, size.height);
@@ -28,15 +30,22 @@ void bench_raster(const BenchOptions& o, const Size size, std::ostream* csv) {
     GBuffer gbuffer(size.width, size.height);
     rasterize_into(scene, pose, view, vis);
 
-    const double vis_ms = median_ms(o.warmup, o.runs, [&] { rasterize_into(scene, pose, view, vis); });
-    const double gb_ms = median_ms(o.warmup, o.runs, [&] { resolve_gbuffer_into(scene, pose, view, vis, gbuffer); });
-    const double both_ms = median_ms(o.warmup, o.runs, [&] {
-      rasterize_into(scene, pose, view, vis);
-      resolve_gbuffer_into(scene, pose, view, vis, gbuffer);
-    });
-    const double mv_ms = median_ms(o.warmup, o.runs, [&] { backproject_motion(scene, g.prev_pose, g.prev_view, vis); });
-    std::printf("%-10s %4dx%-4d %12.2f %12.2f %12.2f %12.2f\n", name.c_str(), size.width, size.height, vis_ms, gb_ms,
-                both_ms, mv_ms);
+    double vis_ms = 0.0, gb_ms = 0.0, both_ms = 0.0, mv_ms = 0.0;
+    {  // the bar's line ends before the row is printed
+      ProgressBar bar("bench raster " + name, 4 * calls_per_measurement(o));
+      vis_ms = median_ms(o.warmup, o.runs, [&] { rasterize_into(scene, pose, view, vis); }, &bar);
+      gb_ms = median_ms(o.warmup, o.runs, [&] { resolve_gbuffer_into(scene, pose, view, vis, gbuffer); }, &bar);
+      both_ms = median_ms(
+          o.warmup, o.runs,
+          [&] {
+            rasterize_into(scene, pose, view, vis);
+            resolve_gbuffer_into(scene, pose, view, vis, gbuffer);
+          },
+          &bar);
+      mv_ms = median_ms(o.warmup, o.runs, [&] { backproject_motion(scene, g.prev_pose, g.prev_view, vis); }, &bar);
+    }
+    table.row(name, {cell("%dx%d", size.width, size.height), cell("%.2f", vis_ms), cell("%.2f", gb_ms),
+                     cell("%.2f", both_ms), cell("%.2f", mv_ms)});
     if (csv) {
       const std::pair<const char*, double> rows[] = {
           {"visibility", vis_ms}, {"gbuffer", gb_ms}, {"visibility+gbuffer", both_ms}, {"motion", mv_ms}};

@@ -7,6 +7,7 @@
 //   - the memory of one frame's planes as written to EXR.
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "eval/run_memory.h"
 #include "raster/gbuffer_frame.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -44,20 +45,16 @@ void cast_bare(const EmbreeScene& embree, const std::vector<std::vector<LoggedRa
   });
 }
 
-size_t frame_bytes(const Frame& f) {
-  size_t bytes = 0;
-  for (const auto& [name, plane] : f.float_channels()) bytes += plane.data.size() * sizeof(float);
-  for (const auto& [name, plane] : f.uint_channels()) bytes += plane.data.size() * sizeof(uint32_t);
-  return bytes;
-}
-
 }  // namespace
 
 void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
-  std::printf("%-10s %9s %9s %9s %9s %12s %12s %7s %9s %8s   (median of %d runs, %d threads)\n", "scene", "size",
-              "frame ms", "loop ms", "Mrays", "tracer Mr/s", "bare Mr/s", "ratio", "frame MB", "layers", o.runs, thread_count());
+  const std::vector<std::string> scenes = bench_scene_list(o.scenes);
+  const BenchTable table("scene", scenes,
+                         {{"size", 9}, {"frame ms", 9}, {"loop ms", 9}, {"Mrays", 9}, {"tracer Mr/s", 12},
+                          {"bare Mr/s", 12}, {"ratio", 7}, {"frame MB", 9}, {"layers", 8}});
+  table.header(cell("(median of %d runs, %d threads)", o.runs, thread_count()));
   const RenderSettings settings;  // 1 spp, seed 0, one indirect bounce: what a denoiser gets
-  for (const std::string& name : bench_scene_list(o.scenes)) {
+  for (const std::string& name : scenes) {
     const Scene scene = load_scene(name);
     BenchFrame b = bench_frame(scene, size);
     const FrameGeometry& g = b.geometry;
@@ -65,30 +62,39 @@ void bench_trace(const BenchOptions& o, const Size size, std::ostream* csv) {
     // The frame time (BVH build, tracing, writing the layers) and, inside it, the tracing loop alone.
     std::vector<double> loop_seconds;
     TraceStats stats;
-    const double trace_ms = median_ms(o.warmup, o.runs, [&] {
-      stats = trace_layers(scene, g, settings, frame);
-      loop_seconds.push_back(stats.seconds);
-    });
+    double trace_ms = 0.0, bare_ms = 0.0;
+    {  // the bar's line ends before the row is printed
+      ProgressBar bar("bench trace " + name, 2 * calls_per_measurement(o));
+      trace_ms = median_ms(
+          o.warmup, o.runs,
+          [&] {
+            stats = trace_layers(scene, g, settings, frame);
+            loop_seconds.push_back(stats.seconds);
+          },
+          &bar);
+      const EmbreeScene embree(scene, g.pose);
+      const LightSet lights(scene, g.pose);
+      const SurfaceTable surfaces(scene, g.pose);
+      const auto rays = record_rays(scene, g, settings, embree, lights, surfaces);
+      bare_ms = median_ms(o.warmup, o.runs, [&] { cast_bare(embree, rays); }, &bar);
+    }
     const double loop_ms = 1e3 * median(loop_seconds);
-
-    const EmbreeScene embree(scene, g.pose);
-    const LightSet lights(scene, g.pose);
-    const SurfaceTable surfaces(scene, g.pose);
-    const auto rays = record_rays(scene, g, settings, embree, lights, surfaces);
-    const double bare_ms = median_ms(o.warmup, o.runs, [&] { cast_bare(embree, rays); });
 
     // Both rates count the same rays: the tracing loop (shading, sampling, ray casts) against the casts alone.
     const double tracer_rate = double(stats.rays) / (1e-3 * loop_ms);
     const double bare_rate = double(stats.rays) / (1e-3 * bare_ms);
     const double mb = double(frame_bytes(frame)) / (1024.0 * 1024.0);
     const size_t layers = frame.float_channels().size() + frame.uint_channels().size();
-    std::printf("%-10s %4dx%-4d %9.2f %9.2f %9.3f %12.2f %12.2f %7.2f %9.1f %8zu\n", name.c_str(), size.width,
-                size.height, trace_ms, loop_ms, 1e-6 * double(stats.rays), 1e-6 * tracer_rate, 1e-6 * bare_rate, tracer_rate / bare_rate, mb, layers);
+    table.row(name, {cell("%dx%d", size.width, size.height), cell("%.2f", trace_ms), cell("%.2f", loop_ms),
+                     cell("%.3f", 1e-6 * double(stats.rays)), cell("%.2f", 1e-6 * tracer_rate),
+                     cell("%.2f", 1e-6 * bare_rate), cell("%.2f", tracer_rate / bare_rate), cell("%.1f", mb),
+                     cell("%zu", layers)});
     if (csv) {
       const std::pair<const char*, double> rows[] = {{"ms_frame", trace_ms},           {"ms_trace_loop", loop_ms},    {"ms_bare_embree", bare_ms},
                                                      {"rays", double(stats.rays)},      {"tracer_rays_per_s", tracer_rate},
                                                      {"bare_rays_per_s", bare_rate},    {"ratio", tracer_rate / bare_rate},
-                                                     {"frame_bytes", double(frame_bytes(frame))}};
+                                                     {"frame_bytes", double(frame_bytes(frame))},
+                                                     {"frame_planes", double(layers)}};
       for (const auto& [metric, value] : rows)
         *csv << "trace," << name << ',' << size.width << ',' << size.height << ',' << thread_count() << ',' << metric
              << ',' << value << '\n';

@@ -13,10 +13,13 @@
 #include "app/bench.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "eval/run_memory.h"
 #include "motion/backproject.h"
 #include "scenes/catalog.h"
+#include "scenes/gltf_loader.h"
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -41,6 +44,37 @@ std::vector<std::string> bench_scene_list(const std::string& text) {
   return names;
 }
 
+BenchTable::BenchTable(const std::string& first, const std::vector<std::string>& cells,
+                       std::vector<std::pair<std::string, int>> columns)
+    : first_(first), first_width_(int(first.size())), columns_(std::move(columns)) {
+  for (const std::string& c : cells) first_width_ = std::max(first_width_, int(c.size()));
+  for (auto& [name, width] : columns_) width = std::max(width, int(name.size()));
+}
+
+void BenchTable::header(const std::string& note) const {
+  std::printf("%-*s", first_width_, first_.c_str());
+  for (const auto& [name, width] : columns_) std::printf(" %*s", width, name.c_str());
+  std::printf("%s%s\n", note.empty() ? "" : "   ", note.c_str());
+  std::fflush(stdout);
+}
+
+void BenchTable::row(const std::string& first, const std::vector<std::string>& cells) const {
+  std::printf("%-*s", first_width_, first.c_str());
+  for (size_t c = 0; c < cells.size() && c < columns_.size(); ++c)
+    std::printf(" %*s", columns_[c].second, cells[c].c_str());
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+std::string cell(const char* format, ...) {
+  char text[64];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  return text;
+}
+
 BenchFrame bench_frame(const Scene& scene, Size size) {
   BenchFrame b{rasterize_frame(scene, int(scene.fps / 2), size.width, size.height), Frame(size.width, size.height)};
   write_gbuffer_layers(scene, b.geometry, b.frame);
@@ -50,8 +84,28 @@ BenchFrame bench_frame(const Scene& scene, Size size) {
 
 namespace {
 
+// What the stage will hold at --size, against the memory there is (eval/run_memory.h), before any work: the
+// frames it keeps (bench_filter.cpp renders its whole sequence first), counted on the first scene's frame (every
+// scene's frames have the same layers).
+void require_bench_fits(const BenchOptions& o, Size size) {
+  const std::vector<std::string> scenes = bench_scene_list(o.scenes);
+  if (scenes.empty()) return;
+  const Scene scene = load_scene(scenes.front());
+  const bool filter = o.stage == "filter";
+  const std::unique_ptr<Method> method = filter ? make_method(o.method, o.params) : nullptr;
+  RenderSettings settings;
+  if (method && method->reads_shading_term()) settings.trace.shading_samples = kTrmvShadingSamples;
+  const bool gradients = o.stage == "gradients" || (method && method->reads_gradient_samples());
+  const int frames = filter ? std::max(5, o.warmup) + o.runs : gradients ? 3 : 2;
+  require_run_fits("bench --stage " + o.stage, size.width, size.height,
+                   bench_planes(rendered_frame_planes(scene, settings, gradients), frames,
+                                method ? method_planes(*method) : 0),
+                   memory_budget());
+}
+
 void run_bench(const BenchOptions& o) {
   const Size size = parse_size(o.size);
+  require_bench_fits(o, size);
   std::ostringstream csv;
   std::ostream* csv_out = o.csv.empty() ? nullptr : &csv;
   if (csv_out) csv << "stage,scene,width,height,threads,metric,value\n";
@@ -79,7 +133,8 @@ Command add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "time a stage on the shipped scenes (median after warm-up)");
   sub->add_option("--stage", o->stage, "what to time: raster, trace, gradients, motion, filter")->capture_default_str();
-  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT; refused when the run would not fit in the memory available")
+      ->capture_default_str();
   sub->add_option("--scenes", o->scenes, "comma-separated scene names, or all")->capture_default_str();
   sub->add_option("--runs", o->runs, "timed runs (the median is reported)")->check(CLI::Range(1, 10000))->capture_default_str();
   sub->add_option("--warmup", o->warmup, "untimed runs first")->check(CLI::Range(0, 1000))->capture_default_str();

@@ -1,7 +1,8 @@
 // rtdr check: whether a directory of EXR frames, rendered by rtdr or written by your engine, can be the input of a
 // method. It reads every frame and prints one line per problem, naming the file and the layer: a layer that is
 // missing or lacks channels, a channel of the wrong type or holding NaN or infinity, a frame of another size than
-// the first, a file that is no readable EXR, and for asvgf and a-eaw a frame without gradient samples. It checks
+// the first, a file that is no readable EXR, and for asvgf and a-eaw a frame without gradient samples or with two in
+// one stratum: exactly the checks `rtdr filter` makes (app/sequence.h, filters/input_check.h). It checks
 // every frame and every layer rather than stopping at the first problem, and exits 1 when it found any; channels
 // that may be left out (emission, indirect: 0) are noted when absent, not counted as problems. The
 // layers each method reads, and their conventions: docs/buffers.md, "Feeding your engine's frames".
@@ -36,7 +37,7 @@ void run_check(const CheckOptions& o) {
     std::vector<std::string> found;
     try {
       const Frame frame = read_exr(f.path);
-      found = input_problems(frame, channels, first ? &*first : nullptr, method->reads_gradient_samples());
+      found = sequence_input_problems(frame, channels, first ? &*first : nullptr);  // what filter refuses
       for (const auto& [name, value] : channels.defaults)
         if (!frame.has(name)) defaulted.insert(name);
       if (!first) {

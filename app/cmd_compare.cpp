@@ -1,15 +1,17 @@
-// rtdr compare: runs SVGF over a rendered sequence on both back ends, the golden passes (cpu) and the shader ports
-// (vulkan), frame by frame on the same inputs, and reports per channel how far the ports' outputs and intermediate
+// rtdr compare: runs a method (svgf, asvgf or trmv) over a rendered sequence on both back ends, the golden passes
+// (cpu) and the shader ports (vulkan), frame by frame on the same inputs, and reports per channel how far the ports' outputs and intermediate
 // buffers are from the golden ones (eval/frame_diff.h): every layer `rtdr filter --dump-passes` writes
 // (docs/buffers.md), the colour and the display. Each back end keeps its own history, as `rtdr filter` would, so a
 // frame's differences include what the earlier frames' differences left in the histories.
 //
 // Printed: one row per channel, in the pipeline's order (the outputs, then each pass's layers as filters/passes.h
 // declares them), with the pass that writes it and its worst absolute and relative difference over the frames,
-// each with the frame, the pixel and the two values there. A back end that leaves out a declared layer is an
-// error. --csv writes one row per frame and channel. --max-rel-error makes the
-// command fail (exit 1, after the report) when any channel's relative difference exceeds it: a port check for
-// scripts. The bounds the tests hold the ports to, and why, are in tests/gpu_svgf_test.cpp.
+// each with the frame, the pixel and the two values there, then the bound the ports are held to for that channel
+// (gpu/port_bounds.h, the table the tests assert; "-" where none is stated) and whether it holds. Last, a verdict:
+// the largest relative difference, and PASS when every bounded channel is within its bound, else FAIL with the
+// channels beyond, and exit 1 (after the report): a port check for scripts. A back end that leaves out a declared
+// layer is an error. --csv writes one row per frame and channel. --max-rel-error fails (exit 1) when any channel's
+// relative difference exceeds it, bounded or not.
 #include "app/backend.h"
 #include "app/commands.h"
 #include "app/sequence.h"
@@ -18,7 +20,9 @@
 #include "eval/frame_diff.h"
 #include "filters/method.h"
 #include "filters/passes.h"
+#include "gpu/port_bounds.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -58,6 +62,47 @@ std::string value(const Worst& w, float v) {
   std::snprintf(text, sizeof text, "%.7g", v);
   return text;
 }
+
+// A bound as printed: "2e-03 rel", "0 abs", or "-" where none is stated.
+std::string bound_text(const PortBound* bound, bool half) {
+  if (!bound) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g %s", bound->bound(half), bound->relative ? "rel" : "abs");
+  return text;
+}
+
+// The overall verdict: each bounded channel against its bound, and the largest relative difference of all.
+struct Verdict {
+  int bounded = 0;
+  std::vector<std::string> failed;  // "channel: difference > bound"
+  const Worst* largest = nullptr;
+  std::string largest_channel;
+
+  // "ok", "FAIL" or "-" (no bound) for one channel, counting it.
+  std::string judge(const std::string& channel, const PortBound* bound, bool half, double abs, double rel) {
+    if (!bound) return "-";
+    ++bounded;
+    const double difference = bound->relative ? rel : abs;
+    if (difference <= bound->bound(half)) return "ok";
+    char text[160];
+    std::snprintf(text, sizeof text, "%s %.3g > %s (%s)", channel.c_str(), difference, bound_text(bound, half).c_str(),
+                  bound->test);
+    failed.push_back(text);
+    return "FAIL";
+  }
+
+  void print(bool judged) const {
+    if (largest)
+      std::printf("largest relative difference: %s, %.3g at frame %s\n", largest_channel.c_str(),
+                  largest->error.error, where(*largest).c_str());
+    if (!judged)
+      std::printf("verdict: none (the bounds are stated for --rel-floor %g)\n", kPortRelFloor);
+    else if (failed.empty())
+      std::printf("verdict: PASS: all %d bounded channels within their bounds (gpu/port_bounds.h)\n", bounded);
+    else
+      std::printf("verdict: FAIL: %zu of %d bounded channels beyond their bounds\n", failed.size(), bounded);
+  }
+};
 
 void run_compare(const CompareOptions& o) {
   if (!(o.rel_floor > 0.0)) throw Error("--rel-floor must be positive");
@@ -106,17 +151,29 @@ void run_compare(const CompareOptions& o) {
     }
   }
 
-  std::printf("%-42s %-9s %10s %-18s %13s %13s %10s %s\n", "channel", "pass", "max abs", "frame (x, y)", "cpu",
-              "vulkan", "max rel", "frame (x, y)");
+  // The channel column is as wide as the longest name, so the columns stay aligned.
+  int width = 7;
+  for (const std::string& channel : channels) width = std::max(width, int(channel.size()));
+  std::printf("%-*s %-14s %10s %-18s %13s %13s %10s %-18s %9s %s\n", width, "channel", "pass", "max abs",
+              "frame (x, y)", "cpu", "vulkan", "max rel", "frame (x, y)", "bound", "verdict");
   const Worst* beyond = nullptr;  // the worst channel beyond --max-rel-error
   std::string beyond_channel;
   int channels_beyond = 0;
+  const bool half = device.illumination_records() == IlluminationRecords::Fp16;
+  Verdict verdict;
   for (const std::string& channel : channels) {
     const Worst& a = worst_abs[channel];
     const Worst& r = worst_rel[channel];
-    std::printf("%-42s %-9s %10.3g %-18s %13s %13s %10.3g %s\n", channel.c_str(), pass_writing(channel).c_str(),
-                a.error.error, where(a).c_str(), value(a, a.error.reference).c_str(), value(a, a.error.test).c_str(),
-                r.error.error, where(r).c_str());
+    const PortBound* bound = o.rel_floor == kPortRelFloor ? find_port_bound(o.method, channel) : nullptr;
+    const std::string judged = verdict.judge(channel, bound, half, a.error.error, r.error.error);
+    std::printf("%-*s %-14s %10.3g %-18s %13s %13s %10.3g %-18s %9s %s\n", width, channel.c_str(),
+                pass_writing(channel).c_str(), a.error.error, where(a).c_str(), value(a, a.error.reference).c_str(),
+                value(a, a.error.test).c_str(), r.error.error, where(r).c_str(), bound_text(bound, half).c_str(),
+                judged.c_str());
+    if (!verdict.largest || r.error.error > verdict.largest->error.error) {
+      verdict.largest = &r;
+      verdict.largest_channel = channel;
+    }
     if (o.max_rel_error && r.error.error > *o.max_rel_error) {
       ++channels_beyond;
       if (!beyond || r.error.error > beyond->error.error) {
@@ -126,6 +183,10 @@ void run_compare(const CompareOptions& o) {
     }
   }
   if (!o.csv.empty()) write_text_file(o.csv, csv.str());
+  verdict.print(o.rel_floor == kPortRelFloor);
+  if (!verdict.failed.empty())
+    throw Error(std::to_string(verdict.failed.size()) + " channel(s) beyond the ports' bounds (gpu/port_bounds.h); "
+                "the first: " + verdict.failed.front());
   if (beyond) {
     char text[160];
     std::snprintf(text, sizeof text, "%d channel(s) beyond --max-rel-error %g; the worst: %s, %.3g at frame %s",
@@ -139,8 +200,9 @@ void run_compare(const CompareOptions& o) {
 
 Command add_compare_command(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
-  CLI::App* sub = app.add_subcommand("compare", "run SVGF on the golden passes and the Vulkan ports, report the "
-                                                "per-channel differences of every output and intermediate buffer");
+  CLI::App* sub = app.add_subcommand("compare", "run a method (svgf, asvgf or trmv) on the golden passes and on its "
+                                                "Vulkan ports, report the per-channel differences of every output "
+                                                "and intermediate buffer against the ports' bounds, and a verdict");
   sub->add_option("--method", o->method, "the method (svgf, asvgf or trmv: those with Vulkan ports)")->capture_default_str();
   sub->add_option("--in", o->in, "directory of frames written by rtdr render")->required();
   sub->add_option("--frames", o->frames, frames_help("; default: every frame in --in"));

@@ -11,6 +11,7 @@
 #include "filters/image.h"
 #include "filters/method.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -43,12 +44,10 @@ void run_filter(const FilterOptions& o) {
 
   std::printf("method %s (%s%s) on %zu frame(s) of %s\n%s", method->name().c_str(), o.backend.c_str(),
               backend.context ? (", " + backend.context->device_name()).c_str() : "", frames.size(), o.in.c_str(),
-              o.method == "none" ? "" : describe(o.params.svgf).c_str());
-  if (o.method == "asvgf") std::printf("%s", describe_params(asvgf_param_table(), param_values(o.params.asvgf)).c_str());
-  if (o.method == "trmv") std::printf("%s", describe_params(trmv_param_table(), param_values(o.params.trmv)).c_str());
+              describe_method_params(o.method, o.params).c_str());
   for (const SequenceFrame& f : frames) {
     const Frame in = read_method_input(f.path, method->inputs());
-    const Frame filtered = o.dump ? filter_with_dump(*method, in) : method->filter(in);
+    const Frame filtered = about_frame(f, [&] { return o.dump ? filter_with_dump(*method, in) : method->filter(in); });
     require_finite_output(filtered, "frame " + std::to_string(f.index) + " of --in '" + o.in + "'", pass_writing);
     write_exr(out.file(frame_name(f.index, "exr")), filtered);
     write_display_png(out.file(frame_name(f.index, "png")), rgb_plane(filtered, "display"));
@@ -74,13 +73,22 @@ struct ProbeOptions {
 void run_probe(const ProbeOptions& o) {
   const auto [x, y] = parse_pixel(o.pixel, "--pixel");
   const std::unique_ptr<Method> method = make_method(o.method, o.params);
+  // A pass the method does not run is refused before any frame is read, with the passes it runs.
+  const std::vector<std::string> passes = method->probe_passes();
+  if (std::find(passes.begin(), passes.end(), o.pass) == passes.end()) {
+    std::string known;
+    for (const std::string& p : passes) known += (known.empty() ? "" : ", ") + p;
+    throw Error("--pass '" + o.pass + "' is not a pass of method " + o.method + " with these parameters; its passes: " +
+                known + " (rtdr probe --help says what each prints)");
+  }
   // The history of frame F is built by every frame before it: run the method from the first frame on.
   const std::vector<SequenceFrame> all = list_sequence(o.in, "");
   SequenceShape shape;
   bool found = false;
   for (const SequenceFrame& f : all) {
     if (f.index > o.frame) break;
-    method->filter(read_filter_input(f.path, shape, method->inputs()), nullptr);
+    const Frame in = read_filter_input(f.path, shape, method->inputs());
+    about_frame(f, [&] { return method->filter(in, nullptr); });
     found = f.index == o.frame;
   }
   if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");
@@ -127,7 +135,10 @@ Command add_probe_command(CLI::App& app) {
   }
   sub->add_option("--pass", o->pass, names)->capture_default_str();
   sub->footer(passes);
-  sub->add_option("--stream", o->stream, "direct or indirect (for per-stream passes); trmv: visibility or indirect")->capture_default_str();
+  sub->add_option("--stream", o->stream,
+                  "direct or indirect (for per-stream passes; combined with --streams 1); trmv: visibility (or "
+                  "direct), diffuse or glossy")
+      ->capture_default_str();
   sub->add_option("--level", o->level, "a-trous / EAW level")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON instead of text");
   add_method_flags(sub, o->params, o->method);

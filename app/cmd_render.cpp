@@ -10,9 +10,11 @@
 #include "core/exr_io.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "eval/run_memory.h"
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
 #include "trace/render_frame.h"
+#include "trace/true_change.h"
 
 #include <chrono>
 #include <cstdio>
@@ -31,6 +33,7 @@ struct RenderOptions {
   RenderSettings settings;
   bool gradients = false;
   GradientParams gradient;
+  bool true_change = false;
 };
 
 // With --gradients, frame A-1 of the range A-B: read from --out where a gradient render left it, else rendered
@@ -70,6 +73,11 @@ void run_render(const RenderOptions& o) {
       throw Error("--gradients compares two 1-spp samples per gradient pixel: use --spp 1, not " +
                   std::to_string(o.settings.spp));
   }
+  if (o.gradients && o.true_change)
+    throw Error("--true-change measures a frame's own surface samples: render it without --gradients");
+  // What the run will hold, against the memory there is (eval/run_memory.h), before any work.
+  require_run_fits("render", size.width, size.height,
+                   render_planes(rendered_frame_planes(scene, o.settings, o.gradients), o.gradients), memory_budget());
   std::optional<Frame> prev = o.gradients ? frame_before(o, scene, frames, size) : std::nullopt;
   StagedOutputDir out(o.out);  // the frames appear when the last one is done; a failed run leaves none
 
@@ -78,7 +86,9 @@ void run_render(const RenderOptions& o) {
   for (int f = frames.first; f <= frames.last; ++f) {  // no overflow: last <= kMaxFrameIndex
     TraceStats stats;
     Frame frame;
-    if (o.gradients) {
+    if (o.true_change) {
+      frame = render_true_change_frame(scene, f, size.width, size.height, o.settings, &stats);
+    } else if (o.gradients) {
       frame = render_frame_with_gradients(scene, f, size.width, size.height, o.settings, o.gradient,
                                           prev ? &*prev : nullptr, &stats);
     } else if (o.settings.spp > 1) {  // a reference frame takes a while: show progress
@@ -115,7 +125,8 @@ Command add_render_command(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--frames", o->frames, frames_help(", or one frame A; frame f is at t = f/fps"))
       ->capture_default_str();
-  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--size", o->size, "image size WIDTHxHEIGHT; refused when the run would not fit in the memory available")
+      ->capture_default_str();
   sub->add_option("--out", o->out, "output directory (created if missing)")->capture_default_str();
   sub->add_option("--spp", o->settings.spp, "samples per pixel: 1 for denoiser input, e.g. 1024 for reference frames")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
@@ -130,6 +141,9 @@ Command add_render_command(CLI::App& app) {
   sub->add_flag("--gradients", o->gradients,
                 "A-SVGF's input: merge gradient samples carried from the previous frame (trace/gradients.h)");
   add_gradient_flags(sub, o->gradient);
+  sub->add_flag("--true-change", o->true_change,
+                "A-SVGF's yardstick: add truth.prev_direct and truth.prev_indirect, each pixel's surface sample shaded "
+                "under the previous frame's poses, lights and eye with the same seeds (trace/true_change.h)");
   return {sub, [o] { run_render(*o); }};
 }
 

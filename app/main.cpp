@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 int main(int argc, char** argv) {
   rtdr::Cli cli;
@@ -19,7 +20,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help
     return cli.app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "rtdr: error: %s (see rtdr --help)\n", e.what());
+    // Point to the help of the subcommand whose options were being read, where there is one.
+    std::string help = "rtdr --help";
+    for (const CLI::App* sub : cli.app.get_subcommands()) help = "rtdr " + sub->get_name() + " --help";
+    std::fprintf(stderr, "rtdr: error: %s (see %s)\n", e.what(), help.c_str());
     return 2;
   }
 

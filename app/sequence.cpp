@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "filters/input_check.h"
 
 #include <algorithm>
 #include <charconv>
@@ -58,62 +59,26 @@ Frame read_method_input(const std::string& path, const InputChannels& channels) 
   return frame;
 }
 
-Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
-  Frame frame = read_method_input(path, channels);
-  if (shape.first.source.empty()) {
-    shape.first = Frame(frame.width(), frame.height());
-    shape.first.source = path;
-  } else {
-    require_same_size(shape.first, frame);  // names both files
-  }
-  require_finite(frame, channels.floats);                             // present, float and finite
-  for (const std::string& name : channels.uints) frame.uint_channel(name);  // present and uint
-  return frame;
-}
-
-std::vector<std::string> input_problems(const Frame& frame, const InputChannels& channels, const Frame* first,
-                                        bool gradient_header) {
+std::vector<std::string> sequence_input_problems(const Frame& frame, const InputChannels& channels, const Frame* first) {
   std::vector<std::string> problems;
   if (first && (frame.width() != first->width() || frame.height() != first->height()))
     problems.push_back("size " + std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + ", but " +
-                       first->source + " is " + std::to_string(first->width()) + "x" + std::to_string(first->height()));
-  // Missing channels, grouped by layer (the name before the last '.', as docs/buffers.md names layers).
-  std::vector<std::pair<std::string, std::vector<std::string>>> missing;  // layer, its missing channels, in order
-  const auto check = [&](const std::string& name, bool want_float) {
-    const bool is_float = frame.float_channels().count(name) > 0, is_uint = frame.uint_channels().count(name) > 0;
-    if (!is_float && !is_uint) {
-      if (channels.defaults.count(name)) return;  // left out: it takes its default (fill_input_defaults)
-      const std::string layer = name.substr(0, name.rfind('.'));
-      if (missing.empty() || missing.back().first != layer) missing.push_back({layer, {}});
-      missing.back().second.push_back(name);
-    } else if (is_float != want_float) {
-      problems.push_back("channel '" + name + "' is " + (is_float ? "float" : "uint") + ", but the method reads it as " +
-                         (want_float ? "float" : "uint"));
-    } else if (want_float) {
-      const FloatPlane& plane = frame.float_channel(name);
-      size_t bad = 0, first_bad = 0;
-      for (size_t i = 0; i < plane.data.size(); ++i)
-        if (!std::isfinite(plane.data[i]) && bad++ == 0) first_bad = i;
-      if (bad)
-        problems.push_back("channel '" + name + "' holds NaN or infinity at " + std::to_string(bad) +
-                           " pixels, the first at (" + std::to_string(first_bad % size_t(plane.width)) + ", " +
-                           std::to_string(first_bad / size_t(plane.width)) + ")");
-    }
-  };
-  for (const std::string& name : channels.floats) check(name, true);
-  for (const std::string& name : channels.uints) check(name, false);
-  for (const auto& [layer, names] : missing) {
-    std::string list;
-    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-    bool partly = false;  // some channel of the layer is there
-    for (const auto& [n, plane] : frame.float_channels()) partly = partly || n.rfind(layer + ".", 0) == 0;
-    for (const auto& [n, plane] : frame.uint_channels()) partly = partly || n.rfind(layer + ".", 0) == 0;
-    problems.push_back(partly ? "layer '" + layer + "' lacks " + list : "missing layer '" + layer + "' (" + list + ")");
-  }
-  if (gradient_header && !frame.attributes.count("rtdr.gradient.stratum_size"))
-    problems.push_back("no header attribute rtdr.gradient.stratum_size: not rendered with gradient samples "
-                       "(rtdr render --gradients)");
+                       first->source + " is " + std::to_string(first->width()) + "x" + std::to_string(first->height()) +
+                       ": the frames of a sequence must have the same size");
+  for (std::string& p : input_problems(frame, channels)) problems.push_back(std::move(p));  // filters/input_check.h
   return problems;
+}
+
+Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels) {
+  Frame frame = read_method_input(path, channels);
+  const std::vector<std::string> problems =
+      sequence_input_problems(frame, channels, shape.first.source.empty() ? nullptr : &shape.first);
+  if (!problems.empty()) throw Error(path + ": " + problems.front());
+  if (shape.first.source.empty()) {
+    shape.first = Frame(frame.width(), frame.height());
+    shape.first.source = path;
+  }
+  return frame;
 }
 
 void require_finite_output(const Frame& frame, const std::string& what,

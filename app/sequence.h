@@ -4,6 +4,7 @@
 #pragma once
 
 #include "app/commands.h"
+#include "core/error.h"
 #include "core/frame.h"
 #include "filters/method.h"
 
@@ -28,7 +29,7 @@ std::string frame_name(int index, const char* ext);
 std::string frame_path(const std::string& dir, int index, const char* ext);
 
 // The size of a sequence and the file that set it: every frame must match the first. `first` holds no planes,
-// only the first frame's size and source, for core/exr_io.h's require_same_size.
+// only the first frame's size and source, for the size rule of sequence_input_problems.
 struct SequenceShape {
   Frame first;
 };
@@ -38,19 +39,28 @@ struct SequenceShape {
 // checked already.
 Frame read_method_input(const std::string& path, const InputChannels& channels);
 
-// Reads one frame and checks it as the input of a method that reads `channels` (Method::inputs()): each is
-// present (or, in channels.defaults, filled with its default), of its type, and finite, and the frame's size is
-// `shape`'s (the first frame read sets `shape`).
-// Throws a one-line rtdr::Error naming the file(s).
+// Everything wrong with one frame of a sequence as the input of a method that reads `channels`, one line each:
+// a size other than `first`'s (when given), then every problem filters/input_check.h finds. Empty when the frame
+// is fine. rtdr check prints them all; read_filter_input refuses the first: both are this one list.
+std::vector<std::string> sequence_input_problems(const Frame& frame, const InputChannels& channels, const Frame* first);
+
+// Reads one frame and checks it as the input of a method that reads `channels` (Method::inputs()): a channel it
+// may leave out is filled with its default, and the first of sequence_input_problems (against the first frame
+// read, which sets `shape`) throws a one-line rtdr::Error "<path>: <problem>".
 Frame read_filter_input(const std::string& path, SequenceShape& shape, const InputChannels& channels);
 
-// Everything wrong with one frame as the input of a method that reads `channels`, one line each, for rtdr check:
-// each layer that lacks channels, with the channels it lacks (a channel with a default may be absent); each channel of the wrong type; each channel that
-// holds NaN or infinity, with how many pixels and the first; a size other than `first`'s (when given); and, for
-// `gradient_header`, a missing rtdr.gradient.stratum_size attribute. Empty when the frame is fine. Unlike
-// read_filter_input it does not stop at the first problem.
-std::vector<std::string> input_problems(const Frame& frame, const InputChannels& channels, const Frame* first,
-                                        bool gradient_header);
+// Runs `step` (the filtering of frame `f`) and returns what it returns; an rtdr::Error it throws is said to be
+// about that frame: "<path>: <message>", unless the message names the file already.
+template <class Step>
+auto about_frame(const SequenceFrame& f, Step&& step) {
+  try {
+    return step();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    if (message.find(f.path) != std::string::npos) throw;
+    throw Error(f.path + ": " + message);
+  }
+}
 
 // Checks a frame before it is written: every float channel is finite. Otherwise throws a one-line rtdr::Error
 // naming `what` (the frame), the channel, the pass that wrote it (`pass_of(channel)`) and the pixel.

@@ -20,8 +20,9 @@ void write_exr(const std::string& path, const Frame& frame);
 
 // Reads a scanline or tiled EXR whose data window starts at (0, 0). FLOAT and HALF channels become float
 // channels, UINT channels become uint channels; string attributes whose names start with "rtdr." become
-// Frame::attributes. Sets Frame::source to `path`. Any problem (missing file,
-// not an EXR, truncated, subsampled channels, an offset data window) throws a one-line rtdr::Error naming
+// Frame::attributes. Sets Frame::source to `path`. Any problem (missing file, not a regular file (a FIFO is
+// refused at once, core/regular_file.h), not an EXR, truncated, more pixels than the file can hold or memory can
+// take (core/exr_checks.h), subsampled channels, an offset data window) throws a one-line rtdr::Error naming
 // the file.
 Frame read_exr(const std::string& path);
 

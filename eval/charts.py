@@ -1,25 +1,27 @@
 #!/usr/bin/python3
-"""The three charts of an evaluation, from the metrics.csv that `rtdr eval` writes.
+"""The charts of an evaluation, from the metrics.csv that `rtdr eval` writes.
 
-  speed_vs_accuracy.png  mean ms per frame against mean RMSE (linear HDR), one labelled point per method and
-                         parameter setting, the Pareto front (nothing both faster and more accurate) marked
-  error_over_frames.png  RMSE per frame for each method's default setting (in the style of A-SVGF Fig. 4)
-  temporal_error.png     temporal error per frame: mean luminance of the difference of consecutive display
-                         frames (SVGF Sec. 5.4, in the style of SVGF Fig. 10)
+  speed_vs_accuracy.png  one panel per metric (--metrics, default rmse, ssim, flip): mean ms per frame against the
+                         metric's mean, one labelled point per method and parameter setting, and the metric's own
+                         Pareto front (nothing both faster and better in that metric); the metrics disagree
+                         (a method can win FLIP and SSIM and lose RMSE), so each has its panel and its front
+  error_over_frames.png  each metric per frame, one panel per metric, for the settings of --lines (in the style
+                         of A-SVGF Fig. 4)
+  temporal_error.png     temporal error per frame: mean luminance of the difference of consecutive display frames
+                         (SVGF Sec. 5.4, in the style of SVGF Fig. 10), with the reference's own change (column
+                         ref_temporal_error): the scene's real motion, plus what noise the reference has left
+  strip.png              with --tile: the last frame of every method as a labelled grid of crops (eval/strip.py)
 
 A method's family is its name before the first ':' (svgf, asvgf, eaw, a-eaw, accum, none, ...). Each family
-has one colour and one marker, the same on all three charts (FAMILY_STYLES; a family not listed there takes
-the next pair of a fixed cycle, in the order the csv first names it), and the speed chart's legend lists
+has one colour and one marker, the same on every chart (FAMILY_STYLES; a family not listed there takes the
+next pair of a fixed cycle, in the order the csv first names it), and the legends, right of the plots, list
 them. The shader ports (backend=vulkan, at their device time) keep their family's colour and marker, drawn
-open (white inside).
+open (white inside). Labels are placed by eval/chart_layout.py: none overlaps another or a marker, and each
+is nearest its own point or joined to it by a leader line. Method names and the title are shown literally
+(a '$' is a dollar sign, not TeX).
 
-Where points cluster, each label is placed apart by place_labels: candidate positions on rings around its
-point, chosen greedily so that no two labels overlap, no label covers a marker, and every label stays inside
-the axes (measured in display coordinates with the renderer's text extents); a label that had to move away
-from its point is joined to it by a thin leader line. The placement is deterministic: the same csv gives
-the same chart. tests/eval_charts_test.py checks it on clustered points.
-
-Usage: /usr/bin/python3 eval/charts.py out/eval/metrics.csv out/eval [--title TEXT]
+Usage: /usr/bin/python3 eval/charts.py out/eval/metrics.csv out/eval [--title TEXT] [--metrics rmse,ssim,flip]
+           [--lines SPEC,SPEC] [--tile LABEL PNG ... --crop auto|full|X,Y,W,H]
 Needs Debian's numpy and matplotlib (python3-numpy, python3-matplotlib), installed by tools/setup.sh.
 Each chart is written under a temporary name and renamed, so a failure (a full disk, say) leaves no partial
 PNG; it prints one line, "charts.py: error: ...", and exits with status 1.
@@ -34,14 +36,19 @@ try:
     import matplotlib
 
     matplotlib.use("Agg")  # no display: write files only
-    import matplotlib.patheffects as patheffects
+    matplotlib.rcParams["text.usetex"] = False  # user text is never TeX (chart_layout.literal)
     import matplotlib.pyplot as plt
-    import numpy as np
     from matplotlib.lines import Line2D
+    from matplotlib.ticker import MaxNLocator
+
+    import chart_layout
+    import strip
+    from chart_layout import literal
 except ImportError as e:  # one line, as below
     sys.exit("charts.py: error: %s (needs Debian's python3-matplotlib: run tools/setup.sh)" % e)
 
 DPI = 110  # figures are laid out and saved at one resolution, so the measured label boxes are the saved ones
+MARKER_AREA = chart_layout.MARKER_AREA
 
 # family: (colour, marker). Filled markers only, so that an open (port) marker reads as the same shape.
 FAMILY_STYLES = {
@@ -53,15 +60,22 @@ FAMILY_STYLES = {
     "accum": ("tab:olive", "v"),
     "none": ("tab:gray", "h"),
     "taa": ("tab:pink", "<"),
+    "trmv": ("tab:green", "^"),
 }
 # Families not listed above take colour i % 7 and marker i % 6 of these; 7 and 6 are coprime, so the first
 # 42 such families all get a different pair.
-OTHER_COLOURS = ["tab:green", "tab:cyan", "#393b79", "#8c6d31", "#843c39", "#7b4173", "#637939"]
+OTHER_COLOURS = ["tab:cyan", "#393b79", "#8c6d31", "#843c39", "#7b4173", "#637939", "#17becf"]
 OTHER_MARKERS = [">", "p", "d", "8", "H", "*"]
 
-MARKER_AREA = 36  # scatter marker area [pt^2]
-LABEL_FONTSIZE = 7
-LABEL_GAP_PX = 3.0  # free space kept between a label and a marker, another label or the axes' frame
+# metric column: (axis label, whether higher is better, logarithmic axis over frames where it spans a decade)
+METRICS = {
+    "rmse": ("RMSE (linear HDR)", False, True),
+    "relmse": ("relMSE (linear HDR)", False, True),
+    "ssim": ("SSIM (display)", True, False),
+    "flip": ("FLIP (display)", False, True),
+    "umbra_rmse": ("RMSE in the moving umbrae", False, True),
+    "temporal_error": ("temporal error (display)", False, True),
+}
 
 
 def read_rows(path):
@@ -74,10 +88,15 @@ def read_rows(path):
     return rows
 
 
+def spec_label(spec):
+    """A method spec as the charts name it: without alpha_moments when it only repeats alpha (the sweeps set both)."""
+    name, _, params = spec.partition(":")
+    params = ":".join(p for p in params.split(":") if p and not p.startswith("alpha_moments="))
+    return name + (":" + params if params else "")
+
+
 def label(row):
-    """method:params, without alpha_moments when it only repeats alpha (the sweeps set both)."""
-    params = ":".join(p for p in row["params"].split(":") if p and not p.startswith("alpha_moments="))
-    return row["method"] + (":" + params if params else "")
+    return spec_label(row["method"] + ":" + row["params"])
 
 
 def family(name):
@@ -119,11 +138,12 @@ def mean(values):
     return sum(values) / len(values) if values else math.nan
 
 
-def pareto_front(points):
-    """The points no other point beats in both time and error, sorted by time."""
+def pareto_front(points, higher_is_better=False):
+    """The points (ms, value, ...) no other point beats in both time and value, sorted by time."""
+    sign = -1.0 if higher_is_better else 1.0
     front = []
-    for p in sorted(points, key=lambda p: (p[0], p[1])):
-        if not front or p[1] < front[-1][1]:
+    for p in sorted(points, key=lambda p: (p[0], sign * p[1])):
+        if not front or sign * p[1] < sign * front[-1][1]:
             front.append(p)
     return front
 
@@ -140,159 +160,97 @@ def save(fig, path):
             os.remove(tmp)
 
 
-# Label placement. Everything below works in display coordinates (pixels), on boxes (x0, y0, x1, y1).
-
-
-def overlap_area(boxes, others):
-    """The area of the intersection of each of `boxes` (N x 4) with each of `others` (M x 4): N x M."""
-    w = np.minimum(boxes[:, None, 2], others[None, :, 2]) - np.maximum(boxes[:, None, 0], others[None, :, 0])
-    h = np.minimum(boxes[:, None, 3], others[None, :, 3]) - np.maximum(boxes[:, None, 1], others[None, :, 1])
-    return np.clip(w, 0, None) * np.clip(h, 0, None)
-
-
-def inside(points, boxes):
-    """Whether each of `points` (... x 2) lies strictly inside each of `boxes` (M x 4): ... x M."""
-    x, y = points[..., 0, None], points[..., 1, None]
-    return (x > boxes[:, 0]) & (x < boxes[:, 2]) & (y > boxes[:, 1]) & (y < boxes[:, 3])
-
-
-def sample_polyline(xy, step=2.0):
-    """Points every `step` pixels or closer along the polyline through the rows of `xy` (K x 2)."""
-    samples = [np.zeros((0, 2))]
-    for a, b in zip(xy[:-1], xy[1:]):
-        n = max(2, int(np.hypot(*(b - a)) / step) + 1)
-        samples.append(a + np.linspace(0.0, 1.0, n)[:, None] * (b - a))
-    return np.concatenate(samples)
-
-
-def label_candidates(p, size, r_first, r_last, step):
-    """Candidate boxes of size (w, h) on rings around point p: boxes (N x 4), anchors (N x 2), radii (N).
-
-    On the ring of radius rho, in direction theta, the box touches the ring at its anchor, the point of its
-    boundary that faces p: theta = 0 puts the middle of its left edge at distance rho right of p, theta = 45
-    degrees its lower-left corner. Nearer rings come first and, on a ring, the directions go right, upper
-    right, up, ... counter-clockwise, so that a tie goes to the usual position, right of the point."""
-    w, h = size
-    theta = np.radians(np.arange(16) * 22.5)
-    c, s = np.cos(theta), np.sin(theta)
-    square = np.maximum(np.abs(c), np.abs(s))
-    fx, fy = 0.5 - 0.5 * c / square, 0.5 - 0.5 * s / square  # the anchor, as fractions of w and h
-    rho = np.arange(r_first, r_last + step, step)
-    rho, c, s, fx, fy = [a.ravel() for a in np.broadcast_arrays(rho[:, None], c, s, fx, fy)]
-    anchors = np.column_stack([p[0] + rho * c, p[1] + rho * s])
-    lower_left = anchors - np.column_stack([fx * w, fy * h])
-    return np.column_stack([lower_left, lower_left + (w, h)]), anchors, rho
-
-
-def label_costs(boxes, anchors, rho, p, own, scene):
-    """The cost of each candidate box of point p (marker number `own`). In order of weight: leaving the axes;
-    covering a marker or a label (per pixel of overlap, the gap included); a leader line over another marker or
-    label (each); covering the lines to avoid and the leader lines (per 2-pixel sample); distance (per pixel)."""
-    x0, y0, x1, y1 = scene["frame"]
-    outside = (boxes[:, 0] < x0) | (boxes[:, 1] < y0) | (boxes[:, 2] > x1) | (boxes[:, 3] > y1)
-    padded = boxes + (-LABEL_GAP_PX, -LABEL_GAP_PX, LABEL_GAP_PX, LABEL_GAP_PX)
-    covered = overlap_area(padded, np.vstack([scene["markers"], scene["labels"]])).sum(axis=1)
-    others = np.vstack([np.delete(scene["markers"], own, axis=0), scene["labels"]])
-    leader = p + np.linspace(0.0, 1.0, 12)[None, :, None] * (anchors[:, None, :] - p)  # N x 12 x 2
-    crossed = inside(leader, others).any(axis=1).sum(axis=1)
-    on_lines = inside(np.vstack(scene["lines"]), boxes).sum(axis=0)
-    return 1e9 * outside + 1e3 * covered + 50.0 * crossed + 2.0 * on_lines + rho
-
-
-def place_labels(ax, points, labels, colours=None, lines=()):
-    """Writes labels[i] beside points[i] (data coordinates) on `ax` and returns the text artists.
-
-    Call it last, after the layout (tight_layout) and the scales are final: it fixes the axes' limits and
-    places in pixels. The most crowded points (most neighbours within 40 px) choose first; each label takes
-    its cheapest candidate (label_candidates, label_costs), so no two labels overlap, none covers a marker and
-    all stay inside the axes wherever the axes have room. A label more than half a line's height further
-    than the nearest ring gets a leader line from its point, in colours[i] (grey by default). `lines` are
-    polylines, (xs, ys) in data coordinates, that labels should not cover where they can avoid it (the
-    Pareto front)."""
-    fig = ax.figure
-    renderer = fig.canvas.get_renderer()
-    ax.set_xlim(ax.get_xlim())  # from here on, a pixel is a fixed place in the data
-    ax.set_ylim(ax.get_ylim())
-    to_px, to_data = ax.transData, ax.transData.inverted()
-    xy = to_px.transform(np.asarray(points, float).reshape(-1, 2))
-    r_marker = math.sqrt(MARKER_AREA) / 2 * fig.dpi / 72 + 1  # half the marker's side, and its edge
-    frame = ax.bbox.extents + (LABEL_GAP_PX, LABEL_GAP_PX, -LABEL_GAP_PX, -LABEL_GAP_PX)
-    scene = {"frame": frame, "markers": np.column_stack([xy - r_marker, xy + r_marker]),
-             "labels": np.zeros((0, 4)), "lines": [np.zeros((0, 2))]}
-    scene["lines"] += [sample_polyline(to_px.transform(np.column_stack(line))) for line in lines]
-    texts = [ax.text(0, 0, s, fontsize=LABEL_FONTSIZE, ha="left", va="bottom", zorder=4,
-                     path_effects=[patheffects.withStroke(linewidth=2, foreground="white")]) for s in labels]
-    crowd = (np.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1)) < 40).sum(axis=1)
-    r_last = math.hypot(frame[2] - frame[0], frame[3] - frame[1])
-    for i in sorted(range(len(texts)), key=lambda i: (-crowd[i], i)):
-        extent = texts[i].get_window_extent(renderer)
-        r_first = r_marker + LABEL_GAP_PX
-        boxes, anchors, rho = label_candidates(xy[i], (extent.width, extent.height), r_first, r_last, 4.0)
-        best = int(np.argmin(label_costs(boxes, anchors, rho, xy[i], i, scene)))
-        texts[i].set_position(to_data.transform(boxes[best, :2]))
-        scene["labels"] = np.vstack([scene["labels"], boxes[best]])
-        if rho[best] > r_first + extent.height / 2:
-            start = xy[i] + r_marker * (anchors[best] - xy[i]) / rho[best]
-            scene["lines"].append(sample_polyline(np.array([start, anchors[best]])))
-            leader = to_data.transform(np.array([start, anchors[best]]))
-            colour = colours[i] if colours else "0.4"
-            ax.plot(leader[:, 0], leader[:, 1], color=colour, lw=0.6, alpha=0.8, zorder=2.5)
-    return texts
-
-
-def speed_vs_accuracy(groups, styles, out, title):
-    points = [(mean([r["ms_total"] for r in g]), mean([r["rmse"] for r in g]), name) for name, g in groups.items()]
-    points = [p for p in points if math.isfinite(p[0]) and math.isfinite(p[1])]  # a method that never ran
-    fig, ax = plt.subplots(figsize=(10, 6.5), dpi=DPI)
-    for ms, err, name in points:
-        colour, marker = styles[family(name)]
-        face = "white" if is_port(name) else colour  # the shader ports: open markers, at their device time
-        ax.scatter(ms, err, s=MARKER_AREA, marker=marker, facecolors=face, edgecolors=colour, linewidths=1.2,
-                   zorder=3)
-    front = pareto_front(points)
-    ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, zorder=2)
-    ax.set_xscale("symlog", linthresh=1.0)
-    ax.margins(0.08)
-    ax.set_xlabel("mean time per frame [ms] (golden passes: wall time; backend=vulkan: device time)")
-    ax.set_ylabel("mean RMSE against the reference (linear HDR)")
-    ax.set_title("Speed versus accuracy" + title)
-    ax.grid(True, alpha=0.3)
-    ax.legend(handles=legend_handles(points, styles), loc="upper left", bbox_to_anchor=(1.02, 1.0),
-              borderaxespad=0.0, fontsize=8)
-    fig.tight_layout()
-    place_labels(ax, [p[:2] for p in points], [p[2] for p in points],
-                 colours=[styles[family(p[2])][0] for p in points],
-                 lines=[([p[0] for p in front], [p[1] for p in front])])
-    save(fig, os.path.join(out, "speed_vs_accuracy.png"))
-
-
-def legend_handles(points, styles):
-    """One entry per family on the chart, in the order of `styles`, then the ports' open marker and the front."""
-    shown = {family(p[2]) for p in points}
+def legend_handles(names, styles, front=False):
+    """One entry per family among `names`, in the order of `styles`, then the ports' open marker and the front."""
+    shown = {family(n) for n in names}
     handles = [Line2D([], [], ls="", marker=m, color=c, label=f) for f, (c, m) in styles.items() if f in shown]
-    if any(is_port(p[2]) for p in points):
+    if any(is_port(n) for n in names):
         handles.append(Line2D([], [], ls="", marker="o", mfc="white", mec="0.3", mew=1.2,
                               label="open: backend=vulkan\n(shader port, device time)"))
-    handles.append(Line2D([], [], color="k", ls="--", lw=1, label="Pareto front"))
+    if front:
+        handles.append(Line2D([], [], color="k", ls="--", lw=1, label="Pareto front\n(of each panel's metric)"))
     return handles
 
 
-def over_frames(groups, styles, key, ylabel, name, out, title):
-    fig, ax = plt.subplots(figsize=(8, 4.5), dpi=DPI)
-    for method, g in groups.items():
-        if ":" in method:  # parameter sweeps only on the speed chart
-            continue
-        colour, marker = styles[family(method)]
-        ax.plot([r["frame"] for r in g], [r[key] for r in g], color=colour, marker=marker, ms=4, label=method)
-    ax.set_xlabel("frame")
-    ax.set_ylabel(ylabel)
-    ax.set_yscale("log")
-    ax.set_title(ylabel + title)
-    ax.grid(True, alpha=0.3)
-    if ax.lines:  # a csv of sweeps only has no default setting to draw
-        ax.legend()
-    fig.tight_layout()
+def speed_vs_accuracy(groups, styles, out, title, metrics=("rmse", "ssim", "flip")):
+    """One panel per metric: mean ms against the metric's mean, every setting labelled, the metric's front."""
+    metrics = [m for m in metrics if any(m in g[0] for g in groups.values())]
+    ms = {name: mean([r["ms_total"] for r in g]) for name, g in groups.items()}
+    fig, axes = plt.subplots(len(metrics), 1, figsize=(11, 1.0 + 3.9 * len(metrics)), dpi=DPI, squeeze=False)
+    axes = axes[:, 0]
+    panels = []
+    for ax, metric in zip(axes, metrics):
+        name, higher, _ = METRICS.get(metric, (metric, False, True))
+        points = [(ms[n], mean([r[metric] for r in g]), n) for n, g in groups.items()]
+        points = [p for p in points if math.isfinite(p[0]) and p[0] > 0 and math.isfinite(p[1])]
+        for x, y, n in points:
+            colour, marker = styles[family(n)]
+            face = "white" if is_port(n) else colour  # the shader ports: open markers, at their device time
+            ax.scatter(x, y, s=MARKER_AREA, marker=marker, facecolors=face, edgecolors=colour, linewidths=1.2,
+                       zorder=3)
+        front = pareto_front(points, higher)
+        ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, zorder=2)
+        chart_layout.set_ms_axis(ax, [p[0] for p in points])
+        ax.margins(y=0.12)
+        ax.ticklabel_format(axis="y", useOffset=False)
+        ax.set_ylabel("mean %s\n(%s is better)" % (name, "higher" if higher else "lower"))
+        ax.grid(True, alpha=0.3)
+        panels.append((ax, points, front))
+    axes[0].set_title(literal("Speed versus accuracy" + title))
+    axes[-1].set_xlabel("mean time per frame [ms] (golden passes: wall time; backend=vulkan: device time)")
+    chart_layout.legend_outside(fig, legend_handles(list(groups), styles, front=True), axes[0])
+    for ax, points, front in panels:
+        chart_layout.place_labels(ax, [p[:2] for p in points], [p[2] for p in points],
+                                  colours=[styles[family(p[2])][0] for p in points],
+                                  lines=[([p[0] for p in front], [p[1] for p in front])])
+    save(fig, os.path.join(out, "speed_vs_accuracy.png"))
+
+
+def over_frames(groups, styles, metrics, lines, name, out, title, reference=None):
+    """Each metric per frame, one panel each, one curve per setting of `lines`; `reference`: a column drawn as
+    the reference's own curve (black, dashed)."""
+    metrics = [m for m in metrics if any(m in g[0] for g in groups.values())]
+    fig, axes = plt.subplots(len(metrics), 1, figsize=(10, 0.8 + 3.2 * len(metrics)), dpi=DPI, squeeze=False,
+                             sharex=True)
+    axes = axes[:, 0]
+    handles = []
+    for ax, metric in zip(axes, metrics):
+        ylabel, _, log = METRICS.get(metric, (metric, False, True))
+        for method in lines:
+            colour, marker = styles[family(method)]
+            g = groups[method]
+            (line,) = ax.plot([r["frame"] for r in g], [r[metric] for r in g], color=colour, marker=marker, ms=4,
+                              mfc="white" if is_port(method) else colour, label=method)
+            if ax is axes[0]:
+                handles.append(line)
+        if reference and any(reference in g[0] for g in groups.values()):
+            g = next(iter(groups.values()))
+            (line,) = ax.plot([r["frame"] for r in g], [r[reference] for r in g], color="k", ls="--", lw=1.5,
+                              label="reference: its own change\n(the scene's motion, and\nthe noise it has left)")
+            if ax is axes[0]:
+                handles.append(line)
+        ax.set_ylabel(ylabel)
+        values = [v for line in ax.lines for v in line.get_ydata() if math.isfinite(v) and v > 0]
+        if log and values and max(values) > 10 * min(values):  # logarithmic only where it spans a decade
+            ax.set_yscale("log")
+        ax.grid(True, alpha=0.3)
+    axes[0].set_title(literal(("Temporal error" if reference else "Error per frame") + title))
+    axes[-1].set_xlabel("frame")
+    axes[-1].xaxis.set_major_locator(MaxNLocator(integer=True))
+    if handles:  # a csv of sweeps only has no setting to draw
+        chart_layout.legend_outside(fig, handles, axes[0])
+    else:
+        fig.tight_layout()
     save(fig, os.path.join(out, name))
+
+
+def line_settings(groups, lines):
+    """The settings drawn over frames: those of --lines (specs, as rtdr eval passes the ones the user named)
+    that ran, or without --lines every setting without parameters."""
+    if lines is None:
+        return [n for n in groups if ":" not in n]
+    wanted = [spec_label(s) for s in lines.split(",") if s]
+    return [n for n in wanted if n in groups]
 
 
 def main():
@@ -300,13 +258,28 @@ def main():
     parser.add_argument("csv")
     parser.add_argument("out")
     parser.add_argument("--title", default="")
+    parser.add_argument("--metrics", default="rmse,ssim,flip", help="comma-separated metric columns")
+    parser.add_argument("--lines", default=None, help="comma-separated method specs drawn over frames")
+    parser.add_argument("--tile", nargs=2, action="append", default=[], metavar=("LABEL", "PNG"),
+                        help="a tile of strip.png, in order")
+    parser.add_argument("--crop", default="auto", help="strip.png's crop: auto, full or X,Y,W,H")
     args = parser.parse_args()
+    metrics = [m for m in args.metrics.split(",") if m]
+    unknown = [m for m in metrics if m not in METRICS]
+    if unknown:
+        raise ValueError("--metrics: %s is not one of %s" % (",".join(unknown), ",".join(METRICS)))
+    crop = strip.parse_crop(args.crop)  # before any chart is drawn
     groups = group(read_rows(args.csv))
     styles = family_styles(family(name) for name in groups)
     title = " - " + args.title if args.title else ""
-    speed_vs_accuracy(groups, styles, args.out, title)
-    over_frames(groups, styles, "rmse", "RMSE (linear HDR)", "error_over_frames.png", args.out, title)
-    over_frames(groups, styles, "temporal_error", "temporal error (display)", "temporal_error.png", args.out, title)
+    lines = line_settings(groups, args.lines)
+    speed_vs_accuracy(groups, styles, args.out, title, metrics)
+    over_frames(groups, styles, [m for m in metrics if m != "temporal_error"], lines, "error_over_frames.png",
+                args.out, title)
+    over_frames(groups, styles, ["temporal_error"], lines, "temporal_error.png", args.out, title,
+                reference="ref_temporal_error")
+    if args.tile:
+        strip.draw_strip(args.tile, crop, os.path.join(args.out, "strip.png"), title, save, DPI)
 
 
 if __name__ == "__main__":

@@ -6,6 +6,8 @@
 //   ssim, flip        on tone-mapped display values in [0, 1] (the method's `display`, TAA included,
 //                     against the reference tone mapped with the same operator, no TAA)
 //   temporal_error    between consecutive display frames of the method [SVGF17 Sec. 5.4]
+//   ref_temporal_error  the same between consecutive reference frames: the scene's own change, the same in every
+//                    method's row (temporal_error.png draws it beside the methods)
 //   brightness_error  relative error of the image's mean luminance (linear HDR): bias without the noise
 //   umbra_rmse       rmse over the moving umbrae only, Fig. 5's umbra (eval/metrics.h umbra_regions; NaN
 //                    where a frame has none, as under a moving camera)
@@ -21,6 +23,9 @@
 // Keys gradient_<row> set a row of trace/gradients.h's table for this method's input alone, e.g.
 // "asvgf:gradient_stratum_size=2": the method runs on frames with gradient samples made with the run's gradient
 // parameters and these rows changed (Fig. 5's stratum study), while the other methods keep the run's input.
+// The key max_bounces=N renders this method's input AND its references with N indirect bounces (TraceOptions; 0:
+// next-event estimation only, one shadow ray per pixel, the paper's PILLARS [ASVGF18 Sec. 4]), so that one run
+// compares estimators, each against the converged image of its own; EvalConfig::max_bounces sets it for the run.
 #pragma once
 
 #include "filters/image.h"
@@ -32,6 +37,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +55,7 @@ struct MethodSpec {
   std::string illumination;     // backend=vulkan: "fp32", "fp16", or "" for the context's default
   // The gradient_<row> keys, row name without the prefix, in the order given: this method's own input.
   std::vector<std::pair<std::string, double>> gradient_rows;
+  int max_bounces = -1;  // max_bounces=N: this method's input and references; -1: the run's (EvalConfig)
 };
 // Throws rtdr::Error for an unknown method or parameter, a value outside its range, an unknown back end or
 // illumination records, or illumination without backend=vulkan.
@@ -70,6 +77,7 @@ struct EvalConfig {
   int width = 320, height = 180;
   int ref_spp = 256;
   uint32_t seed = 0;
+  int max_bounces = 1;  // indirect bounces of inputs and references (TraceOptions); a spec's max_bounces=N overrides
   std::string cache_dir = "out/cache";  // "" disables the cache
   // A-SVGF's input for every method: 1-spp frames with gradient samples (trace/gradients.h), rendered in order
   // from frame 0, as the paper compares methods on "identical 1 spp input". Implied when a method reads
@@ -89,6 +97,7 @@ struct MetricsRow {
   int frame = 0;
   double rmse = 0, relmse = 0, ssim = 0, flip = 0;
   double temporal_error = 0;  // NaN on the first frame (nothing to compare with)
+  double ref_temporal_error = 0;  // the reference's, between this frame and the one before; NaN on the first
   double brightness_error = 0;  // relative error of the mean luminance, linear HDR (eval/metrics.h)
   double umbra_rmse = 0;        // rmse over the frame's moving umbrae; NaN where it has none
   double gradient_share = 0;    // the share of the input's pixels that are gradient samples
@@ -101,8 +110,8 @@ using EvalProgress = std::function<void(int, int)>;
 
 struct EvalResult {
   std::vector<MetricsRow> rows;
-  // The last frame side by side, for a strip image: the 1-spp input, each method's display (default
-  // parameters only, not the sweeps), the reference.
+  // The last frame side by side, for a strip image: the 1-spp input, each method's display (every spec, in the
+  // order run), the reference.
   std::vector<std::pair<std::string, RgbPlane>> last_frame;
 };
 
@@ -111,35 +120,44 @@ struct EvalResult {
 RgbPlane frame_colour(const Frame& frame);
 
 // What run_eval renders (or takes from the cache): 1-spp inputs of the config's seed (with gradient samples when
-// config.gradients), and references of ref_spp samples of the same estimator with another seed.
-RenderSettings input_settings(const EvalConfig& config);
-RenderSettings reference_settings(const EvalConfig& config);
+// config.gradients), and references of ref_spp samples of the same estimator with another seed, both with
+// `max_bounces` indirect bounces (-1: the run's, config.max_bounces; or a spec's own).
+RenderSettings input_settings(const EvalConfig& config, int max_bounces = -1);
+RenderSettings reference_settings(const EvalConfig& config, int max_bounces = -1);
+// The bounces a spec's method is measured with: its own max_bounces, else the run's.
+int spec_bounces(const MethodSpec& spec, const EvalConfig& config);
 
 // What run_eval renders, or takes from the cache: frames first_frame..last_frame of each of these sequences, at the
 // config's size. The plan of a run's renders (eval/render_plan.h) lists them from here too.
 struct EvalRenders {
-  // The 1-spp inputs: input_settings(config), with TRMV's shading term (kTrmvShadingSamples) when a method reads
-  // it (trmv).
-  RenderSettings input;
-  // Empty when the inputs carry no gradient samples. Otherwise each sequence of inputs with them: the run's
-  // parameters first (every method's input but those of specs with gradient rows of their own), then each other
-  // set the specs' gradient_<row> keys make, in the order of the specs.
-  std::vector<GradientParams> gradient_inputs;
-  RenderSettings reference;  // reference_settings(config)
+  // A sequence of 1-spp inputs: input_settings(config, bounces), with TRMV's shading term (kTrmvShadingSamples)
+  // when a method reads it (trmv), and with gradient samples made with `gradient` when the inputs carry them.
+  struct Input {
+    RenderSettings settings;
+    std::optional<GradientParams> gradient;
+  };
+  // Each input sequence: the run's first (config.max_bounces and config.gradient: every method's input but those
+  // of specs with max_bounces or gradient_<row> keys of their own), then each other one the specs' keys make, in
+  // the order of the specs. Inputs carry gradient samples all or none.
+  std::vector<Input> inputs;
+  // Each reference sequence, reference_settings(config, bounces): the run's bounces first, then the specs' own.
+  std::vector<RenderSettings> references;
+  // For each method, in the order of config.methods: its input sequence and its reference sequence (indices).
+  std::vector<size_t> method_input, method_reference;
 };
 // `methods`: the config's methods, made, in the order of config.methods; only what they read is asked.
 EvalRenders eval_renders(const EvalConfig& config, const std::vector<const Method*>& methods);
 
 // Throws rtdr::Error for a config run_eval refuses before it renders: frames outside 0..kMaxFrameIndex or out of
-// order, a size below the SSIM window, gradient parameters out of range.
+// order, a size below the SSIM window, gradient parameters or bounces out of range.
 void check_eval_config(const EvalConfig& config);
 
 // Every method is made before the first frame is rendered, so a spec that cannot run (no Vulkan device, say) fails
 // at once rather than after the references.
 EvalResult run_eval(const EvalConfig& config, const EvalProgress& progress = {});
 
-// method, params, frame, rmse, relmse, ssim, flip, temporal_error, brightness_error, umbra_rmse, gradient_share,
-// ms_total, then one ms_<pass> column per pass
+// method, params, frame, rmse, relmse, ssim, flip, temporal_error, ref_temporal_error, brightness_error, umbra_rmse,
+// gradient_share, ms_total, then one ms_<pass> column per pass
 // of any method (empty where a method has no such pass). Written atomically.
 void write_metrics_csv(const std::string& path, const std::vector<MetricsRow>& rows);
 

@@ -100,11 +100,14 @@ std::vector<RenderJob> plan_renders(const EvalConfig& c, const std::string& rtdr
     for (int f = c.first_frame; f <= c.last_frame; ++f)
       if (!cache.has(key(s, f))) add_job(s, f, f);
   };
-  add_frames({"reference", renders.reference});
-  if (renders.gradient_inputs.empty()) add_frames({"input", renders.input});
-  for (const GradientParams& g : renders.gradient_inputs) {
+  for (const RenderSettings& reference : renders.references) add_frames({"reference", reference});
+  for (const EvalRenders::Input& input : renders.inputs) {
+    if (!input.gradient) {
+      add_frames({"input", input.settings});
+      continue;
+    }
     // Runs of frames, each from the one before: cut as FrameCache::gradient_frames renders them.
-    const Sequence s{"input with gradient samples", renders.input, &g};
+    const Sequence s{"input with gradient samples", input.settings, &*input.gradient};
     const auto cached = [&](int f) { return cache.has(key(s, f)); };
     for (const GradientRun& run : gradient_runs(c.first_frame, c.last_frame, cached)) add_job(s, run.first, run.last);
   }

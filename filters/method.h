@@ -10,6 +10,7 @@
 #pragma once
 
 #include "core/frame.h"
+#include "filters/pass_log.h"
 #include "filters/probe.h"
 #include "filters/asvgf/asvgf_params.h"
 #include "filters/baselines/eaw.h"
@@ -47,6 +48,11 @@ struct InputChannels {
 // method's own noisy channels), and id.mesh; emission and indirect light default to 0 (an engine with no emitters
 // in view has no emission; one that does not split its illumination puts it all in `direct`).
 InputChannels common_input_channels(const std::vector<std::string>& illumination);
+// How to make frames hold `layer` where `rtdr render` writes it only when asked: "gradient" (A-SVGF's gradient
+// samples: render them with `rtdr render --gradients`) and "direct.shading" (TRMV's shading term: `rtdr render
+// --shading-samples N`); "" for any other layer. Every error about a frame that lacks such a layer ends with it
+// (rtdr filter, probe, compare and check, through app/sequence.h).
+std::string missing_layer_fix(const std::string& layer);
 // Adds every channel of channels.defaults that `frame` lacks, filled with its default. Callers that hand a
 // user's frame to Method::filter call it first (rtdr filter, probe and compare do, through app/sequence.h).
 void fill_input_defaults(Frame& frame, const InputChannels& channels);
@@ -56,13 +62,17 @@ class Method {
   virtual ~Method() = default;
   virtual std::string name() const = 0;
   // Filters the next frame of the sequence. When `dump` is given, every intermediate buffer is added to it
-  // as the layers its passes declare (filters/passes.h, docs/buffers.md "Filter passes").
+  // as the layers its passes declare (filters/passes.h, docs/buffers.md "Filter passes"): what the frame's pass
+  // log holds (passes()).
   virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
   // Forgets all history (the next frame is treated as the first).
   virtual void reset() = 0;
   // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
-  // probe attached. `stream` is "direct" or "indirect" for per-stream passes, `level` the a-trous level.
-  virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const = 0;
+  // probe attached. `stream` is the stream or component for per-stream passes, `level` the level. By default
+  // the pass log's (filters/pass_log.h); a back end that logs no golden function says so instead.
+  virtual Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const;
+  // What the last frame's passes did, in order: their layers and their golden per-pixel functions.
+  const PassLog& passes() const { return log_; }
   // The passes probe() accepts: those the method runs, in order (filters/passes.h declares each).
   virtual std::vector<std::string> probe_passes() const = 0;
   // Every channel filter() reads from its input frame.
@@ -78,7 +88,14 @@ class Method {
  protected:
   // Runs `run` and adds its wall time to times_[pass]; returns the milliseconds.
   double time_pass(const std::string& pass, const std::function<void()>& run);
+  // Logs a run of the pass declared as `name` (filters/passes.h) on `stream` at `level`, for its layers and its
+  // probe (filters/pass_log.h). filter() starts each frame's log with log_.begin and ends it with
+  // `if (dump) log_.dump(*dump)`.
+  PassRun& log_pass(std::string_view name, std::string_view stream = {}, int level = -1) {
+    return log_.add(find_pass(name), stream, level);
+  }
   PassTimes times_;
+  PassLog log_;
 };
 
 // "svgf" (the pipeline of [SVGF17 Sec. 3]), "accum" (its temporal accumulation only, [SVGF17 Sec. 4.1]), "eaw"
@@ -99,18 +116,28 @@ struct MethodParams {
   TrmvParams trmv;
 };
 
-// A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf:
-// alpha = alpha_moments = 0.1 [ASVGF18 Sec. 5] and the 3x3 box a-trous [ASVGF18 Sec. 4]). Throws for an unknown name.
+// A method's own defaults: the tables' declared defaults, except where the method's paper chose otherwise (asvgf and
+// a-eaw: asvgf_defaults in filters/asvgf/asvgf.h, alpha = 0.1 and the 3x3 box). Throws for an unknown name.
 MethodParams method_defaults(const std::string& name);
 // `params` are the tunables; a method ignores the tables of the stages it does not run. Without them, the
 // method's own defaults.
 std::unique_ptr<Method> make_method(const std::string& name);
 std::unique_ptr<Method> make_method(const std::string& name, const MethodParams& params);
 // The stages and parameters make_method() gives the SvgfFilter of method `name` (for other back ends of the same
-// method, gpu/svgf_vulkan.h). Throws like make_method(), and for trmv, which is not one of SVGF's pipelines and
-// has no Vulkan port yet.
+// method, gpu/svgf_vulkan.h). Throws like make_method(), and for a method with a class of its own (trmv: its golden
+// passes are TrmvFilter's, filters/trmv/trmv.h, its Vulkan ports TrmvVulkan's, gpu/trmv_vulkan.h).
 struct SvgfOptions;
 SvgfOptions method_options(const std::string& name, const MethodParams& params = {});
+// The registry's names (filters/method.cpp), in its order.
 std::vector<std::string> method_names();
+// Whether method `name` is one of SVGF's pipelines (method_options gives its stages), rather than a class of its own.
+// Throws for an unknown name.
+bool is_svgf_pipeline(const std::string& name);
+// Sets parameter `key` of the tables method `name` reads: its own table first where it has one (trmv:alpha is
+// TRMV's alpha), then SVGF's, A-SVGF's and TRMV's. False when no table has the key; throws rtdr::Error, with the
+// range, for a value outside it.
+bool set_method_param(const std::string& name, MethodParams& params, const std::string& key, double value);
+// The parameters method `name` reads, one "name = value" line each, as `rtdr filter` prints them.
+std::string describe_method_params(const std::string& name, const MethodParams& params);
 
 }  // namespace rtdr

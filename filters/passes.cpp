@@ -3,6 +3,8 @@
 
 #include "core/error.h"
 
+#include <algorithm>
+
 namespace rtdr {
 
 const std::vector<PassDecl>& filter_passes() {
@@ -24,18 +26,18 @@ const std::vector<PassDecl>& filter_passes() {
       {"adaptive_alpha", "filters/asvgf/adaptive_alpha.cpp", "[ASVGF18 Eq. 14-15, Sec. 3.5]", PassScope::Stream,
        "the last reconstruction iteration's delta^ and Delta^",
        {&kLambda, &kAlpha},
-       {"alpha", "alpha_max_radius"},
-       "the pixel's stratum, its delta^, Delta^ and lambda, the largest lambda around it and alpha_i"},
+       {"alpha", "alpha_moments", "alpha_max_radius"},
+       "the pixel's stratum, its delta^, Delta^ and lambda, the largest lambda around it, alpha_i and alpha_mu_i"},
       {"temporal", "filters/svgf/temporal.cpp", "[SVGF17 Sec. 4.1, 4.2]", PassScope::Stream,
        "the stream's 1-spp illumination; depth.Z, normal, id.mesh and motion; last frame's colour history, "
-       "moments, history length and G-buffer; with A-SVGF the adaptive_alpha pass's lambda",
+       "moments, history length and G-buffer; with A-SVGF the adaptive_alpha pass's alpha_i, alpha_mu_i and lambda",
        {&kTemporal, &kMoment1, &kMoment2, &kHistoryLength},
        {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
        "the back-projected position p', each bilinear tap's consistency tests (inside, mesh id, depth, normal) and "
        "weight, the 3x3 fallback when no tap is consistent, then alpha, C', mu1', mu2' and n"},
       {"variance", "filters/svgf/variance.cpp", "[SVGF17 Sec. 4.2]", PassScope::Stream,
        "the temporal pass's moments and history length; depth.Z, depth.dX/dY, normal, id.mesh",
-       {&kVariance},
+       {&kVariance, &kVarianceSpatial},
        {"variance_min_history", "sigma_z", "sigma_n", "epsilon"},
        "n, then either mu2' - mu1'^2 (n >= variance_min_history) or the 7x7 spatial estimate: each tap's w_z, w_n "
        "and moments, and the weighted means"},
@@ -58,7 +60,7 @@ const std::vector<PassDecl>& filter_passes() {
        "per tap: h, w_rt, w_n, w_x and w; then the sums and the level's colour"},
       {"ema", "filters/svgf/temporal.cpp", "[ASVGF18 Eq. 1, Sec. 4]", PassScope::Stream,
        "the spatial filter's result; depth.Z, normal, id.mesh and motion; last frame's EMA and G-buffer; the "
-       "adaptive_alpha pass's lambda",
+       "adaptive_alpha pass's alpha_i, alpha_mu_i and lambda",
        {&kEma},
        {"alpha", "alpha_moments", "temporal_depth_relative", "temporal_normal_cosine", "max_history", "history_rule"},
        "as the temporal pass, on the spatial filter's result instead of the 1-spp input"},
@@ -150,6 +152,16 @@ const PassDecl& find_pass(std::string_view name) {
   throw Error("there is no pass '" + std::string(name) + "' (passes: " + known + ")");
 }
 
+std::vector<std::string> dump_channels_of(const std::vector<PassUse>& passes, const std::vector<std::string>& streams) {
+  std::vector<std::string> channels;
+  for (const PassUse& use : passes)
+    for (const LayerDecl* layer : use.pass->writes)
+      if (layer->use == LayerUse::Dump)
+        for (std::string& channel : expand_layer(*layer, use.levels, streams))
+          if (std::find(channels.begin(), channels.end(), channel) == channels.end()) channels.push_back(std::move(channel));
+  return channels;
+}
+
 std::string layer_name(const LayerDecl& layer, std::string_view stream, int level) {
   std::string name(layer.pattern);
   if (const size_t at = name.find("<s>"); at != std::string::npos) name.replace(at, 3, stream);
@@ -163,11 +175,11 @@ std::vector<std::string> layer_channels(const LayerDecl& layer, std::string_view
   return {name + ".R", name + ".G", name + ".B"};
 }
 
-std::vector<std::string> expand_layer(const LayerDecl& layer, int levels) {
+std::vector<std::string> expand_layer(const LayerDecl& layer, int levels, const std::vector<std::string>& streams) {
   const bool per_stream = layer.pattern.find("<s>") != std::string_view::npos;
   const bool per_level = layer.pattern.find("<i>") != std::string_view::npos;
   std::vector<std::string> channels;
-  for (const std::string_view stream : {"direct", "indirect"}) {
+  for (const std::string& stream : streams) {
     for (int level = 0; level < (per_level ? levels : 1); ++level)
       for (std::string& c : layer_channels(layer, stream, per_level ? level : -1)) channels.push_back(std::move(c));
     if (!per_stream) break;
@@ -183,6 +195,7 @@ bool layer_has_channel(const LayerDecl& layer, std::string_view channel) {
       pattern.remove_prefix(3);
       if (channel.substr(0, 6) == "direct") channel.remove_prefix(6);
       else if (channel.substr(0, 8) == "indirect") channel.remove_prefix(8);
+      else if (channel.substr(0, 8) == kCombinedStream) channel.remove_prefix(8);
       else return false;
     } else if (pattern.substr(0, 3) == "<i>") {
       pattern.remove_prefix(3);

@@ -26,8 +26,9 @@ enum class LayerType { Rgb, Scalar };
 // Where a layer goes: the output frame of `rtdr filter`, or the dump (--dump-passes) beside it.
 enum class LayerUse { Output, Dump };
 
-// One layer a pass writes. In `pattern`, "<s>" stands for the illumination stream (direct or indirect) and "<i>"
-// for the level of the spatial filter, 0 to levels - 1; a layer without them is written once per frame.
+// One layer a pass writes. In `pattern`, "<s>" stands for the illumination stream (direct or indirect, or combined:
+// their sum filtered as one stream, SvgfParams::streams = 1) and "<i>" for the level of the spatial filter, 0 to
+// levels - 1; a layer without them is written once per frame.
 struct LayerDecl {
   std::string_view pattern;
   LayerType type;
@@ -56,6 +57,10 @@ inline constexpr LayerDecl kHistoryLength{"filter.<s>.history_length", LayerType
 inline constexpr LayerDecl kVariance{"filter.<s>.variance", LayerType::Scalar, LayerUse::Dump,
                                      "luminance variance: mu2' - mu1'^2, or the 7x7 spatial estimate while n < 4",
                                      "[SVGF17 Sec. 4.2]"};
+inline constexpr LayerDecl kVarianceSpatial{"filter.<s>.variance.spatial", LayerType::Scalar, LayerUse::Dump,
+                                            "1 where the variance is the 7x7 spatial estimate (n < "
+                                            "variance_min_history), 0 where it is mu2' - mu1'^2 or there is no surface",
+                                            "[SVGF17 Sec. 4.2]"};
 inline constexpr LayerDecl kLevel{"filter.<s>.level<i>", LayerType::Rgb, LayerUse::Dump,
                                   "the output of level i of the spatial filter", "[SVGF17 Eq. 1]"};
 inline constexpr LayerDecl kLevelVariance{"filter.<s>.level<i>.variance", LayerType::Scalar, LayerUse::Dump,
@@ -189,6 +194,17 @@ struct PassDecl {
 
 // Every pass of every method, in the order a frame runs them.
 const std::vector<PassDecl>& filter_passes();
+
+// One entry of a method's list of passes: the pass, and how many levels of it run (for PassScope::StreamLevel).
+// A method is such a list, in the order its frame runs them (svgf_passes, trmv_passes).
+struct PassUse {
+  const PassDecl* pass;
+  int levels = 0;
+};
+// Every channel of the dump of a method whose passes are `passes`: each pass's dump layers for `streams` and its
+// levels, each channel once. What both back ends of the method dump (Method::dump_channels).
+std::vector<std::string> dump_channels_of(const std::vector<PassUse>& passes,
+                                          const std::vector<std::string>& streams = {"direct", "indirect"});
 // The declaration of pass `name`; throws rtdr::Error listing the passes when there is none.
 const PassDecl& find_pass(std::string_view name);
 
@@ -196,8 +212,12 @@ const PassDecl& find_pass(std::string_view name);
 std::string layer_name(const LayerDecl& layer, std::string_view stream = {}, int level = -1);
 // Its channels: "<name>.R", "<name>.G", "<name>.B" for an RGB layer, "<name>" for a scalar one.
 std::vector<std::string> layer_channels(const LayerDecl& layer, std::string_view stream = {}, int level = -1);
-// Every channel of `layer` for both streams and `levels` levels, as far as its pattern repeats.
-std::vector<std::string> expand_layer(const LayerDecl& layer, int levels);
+// The name of the one stream of a filter that does not separate direct and indirect light (SvgfParams::streams = 1).
+inline constexpr const char* kCombinedStream = "combined";
+
+// Every channel of `layer` for `streams` and `levels` levels, as far as its pattern repeats.
+std::vector<std::string> expand_layer(const LayerDecl& layer, int levels,
+                                      const std::vector<std::string>& streams = {"direct", "indirect"});
 // Whether `channel` is one of `layer`'s channels for some stream and level.
 bool layer_has_channel(const LayerDecl& layer, std::string_view channel);
 

@@ -5,14 +5,25 @@
 
 #include <cstdint>
 #include <cstring>
+#include <optional>
 
 namespace rtdr {
 namespace {
 
-// The view's strides with their defaults filled in, after checking that pixels and rows do not overlap.
+// The view's strides with their defaults filled in, after checking that pixels and rows do not overlap and that
+// every byte the view spans has an offset from `data` that a ptrdiff_t holds (so the address arithmetic of
+// value_at cannot wrap): every product is computed with an overflow check, since a stride of 2^62 times a width of
+// 4 wraps to 0, which would pass the overlap check and read anywhere.
 struct Strides {
   std::ptrdiff_t pixel, row;
 };
+
+// a * b, or nothing when the product does not fit in a ptrdiff_t.
+std::optional<std::ptrdiff_t> product(std::ptrdiff_t a, std::ptrdiff_t b) {
+  std::ptrdiff_t p = 0;
+  if (__builtin_mul_overflow(a, b, &p)) return std::nullopt;
+  return p;
+}
 
 Strides checked_strides(const BufferView& v, int want_channels, const char* what) {
   const std::string name = std::string(what) + ": ";
@@ -23,14 +34,30 @@ Strides checked_strides(const BufferView& v, int want_channels, const char* what
     throw Error(name + "needs " + std::to_string(want_channels) + " channels per pixel, the view has " +
                 std::to_string(v.channels));
   const std::ptrdiff_t value = 4;  // float and uint32 alike
-  const std::ptrdiff_t pixel = v.pixel_stride ? v.pixel_stride : value * v.channels;
-  const std::ptrdiff_t row = v.row_stride ? v.row_stride : pixel * v.width;
-  if (pixel < value * v.channels)
+  const std::ptrdiff_t pixel_values = value * v.channels;  // channels is 1 to 3 here, or a list's size
+  const std::ptrdiff_t pixel = v.pixel_stride ? v.pixel_stride : pixel_values;
+  if (pixel < pixel_values)
     throw Error(name + "pixel_stride " + std::to_string(pixel) + " bytes is less than a pixel's " +
-                std::to_string(v.channels) + " values (" + std::to_string(value * v.channels) + " bytes)");
-  if (row < pixel * v.width)
+                std::to_string(v.channels) + " values (" + std::to_string(pixel_values) + " bytes)");
+  const std::string too_far = name + "the view spans more than PTRDIFF_MAX bytes: ";
+  const std::optional<std::ptrdiff_t> row_bytes = product(pixel, v.width);
+  if (!row_bytes)
+    throw Error(too_far + "pixel_stride " + std::to_string(pixel) + " times width " + std::to_string(v.width));
+  const std::ptrdiff_t row = v.row_stride ? v.row_stride : *row_bytes;
+  if (row < *row_bytes)
     throw Error(name + "row_stride " + std::to_string(row) + " bytes is less than a row of " +
-                std::to_string(v.width) + " pixels (" + std::to_string(pixel * v.width) + " bytes)");
+                std::to_string(v.width) + " pixels (" + std::to_string(*row_bytes) + " bytes)");
+  // The last byte read: (height - 1) row + (width - 1) pixel + the pixel's values.
+  const std::optional<std::ptrdiff_t> rows_before = product(row, v.height - 1);
+  std::ptrdiff_t span = 0;
+  if (!rows_before || __builtin_add_overflow(*rows_before, *row_bytes - pixel + pixel_values, &span))
+    throw Error(too_far + "row_stride " + std::to_string(row) + " times " + std::to_string(v.height - 1) +
+                " rows, plus a row");
+  // And the addresses it spans: data + span must not wrap around the address space.
+  std::uintptr_t end = 0;
+  if (__builtin_add_overflow(reinterpret_cast<std::uintptr_t>(v.data), std::uintptr_t(span), &end))
+    throw Error(name + "the view's " + std::to_string(span) + " bytes from its data pointer wrap around the address "
+                "space");
   return {pixel, row};
 }
 

@@ -9,8 +9,11 @@
 //
 // Plumbing, not a pass: it implements no equation of the papers, and the planes it makes hold the values unchanged.
 //
-// Errors (a null buffer, a size below 1, strides that make pixels or rows overlap, a channel count the plane
-// cannot hold) throw rtdr::Error with a one-line message, as the rtdr command prints them.
+// Errors (a null buffer, a size below 1, strides that make pixels or rows overlap, strides whose span does not fit
+// in a ptrdiff_t or wraps the address space, a channel count the plane cannot hold) throw rtdr::Error with a
+// one-line message, as the rtdr command prints them. Every size is computed with overflow checks (a pixel_stride
+// of 2^62 times a width of 4 would wrap to 0); RTDR cannot know how large your buffer is, only that the view's
+// arithmetic is exact, so the view must describe memory you own.
 #pragma once
 
 #include "core/frame.h"

@@ -3,6 +3,7 @@
 #include "gpu/asvgf_atrous_gpu.h"
 
 #include "core/error.h"
+#include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/svgf_shaders.h"
 
@@ -48,14 +49,7 @@ GradientValues gradient_atrous_vulkan(VulkanContext& context, const GradientValu
   std::vector<GradientAtrousPush> pushes;  // outlive run()
   pushes.reserve(size_t(iterations));
   for (int i = 0; i < iterations; ++i) {
-    pushes.push_back(GradientAtrousPush{.grid_width = uint32_t(w),
-                                        .grid_height = uint32_t(h),
-                                        .level = first_level + i,
-                                        .stratum_size = image.stratum_size,
-                                        .sigma_z = params.sigma_z,
-                                        .sigma_n = params.sigma_n,
-                                        .sigma_l = params.sigma_l,
-                                        .epsilon = params.epsilon});
+    pushes.push_back(gradient_atrous_push(w, h, first_level + i, image.stratum_size, params));
     shaders.gradient_atrous(batch, *ping[i % 2], *surface, *depth_grad, *mesh, *ping[(i + 1) % 2], pushes.back());
   }
   batch.run();

@@ -3,6 +3,7 @@
 #include "gpu/asvgf_gradient_gpu.h"
 
 #include "core/error.h"
+#include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_planes.h"
 #include "gpu/svgf_shaders.h"
 
@@ -13,7 +14,7 @@ namespace rtdr {
 
 GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& noisy, const UIntPlane& source,
                                     const FloatPlane& prev_luminance, const SurfacePlanes& surface, int s,
-                                    double* ms) {
+                                    const GradientForm& form, double* ms) {
   // gradient_image's checks, and the grid it fills.
   GradientImage g = gradient_image_grid(noisy, source, prev_luminance, surface, s);
   const int w = noisy.width, h = noisy.height, sw = g.values.delta.width, sh = g.values.delta.height;
@@ -37,11 +38,7 @@ GradientImage gradient_image_vulkan(VulkanContext& context, const RgbPlane& nois
              mesh_out = plane_buffer(context, sw, sh, TexelFormat::R32UI),
              samples = plane_buffer(context, sw, sh, TexelFormat::R32UI);
 
-  const GradientImagePush push{.width = uint32_t(w),
-                               .height = uint32_t(h),
-                               .grid_width = uint32_t(sw),
-                               .grid_height = uint32_t(sh),
-                               .stratum_size = s};
+  const GradientImagePush push = gradient_image_push(w, h, sw, sh, s, form);
   const GradientImagePlanes planes{noisy_prev.get(), source_buffer.get(), surface_buffer.get(), depth_grad.get(),
                                    mesh.get()};
   run_pass(

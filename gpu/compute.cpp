@@ -1,6 +1,7 @@
 // Buffers, pipelines and timed dispatches. See compute.h.
 #include "gpu/compute.h"
 
+#include "core/data_path.h"
 #include "core/error.h"
 
 #include <algorithm>
@@ -120,9 +121,10 @@ void GpuBuffer::upload(std::span<const float> values) {
 std::vector<float> GpuBuffer::download() const { return std::vector<float>(mapped_, mapped_ + floats_); }
 
 std::vector<uint32_t> load_shader(const std::string& stem) {
-  const std::string path = std::string(RTDR_SHADER_DIR) + "/" + stem + ".spv";
+  const std::string path = data_path("shaders", RTDR_SHADER_DIR) + "/" + stem + ".spv";
   std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw Error("cannot open shader " + path + " (built by the rtdr_shaders target)");
+  if (!file)
+    throw Error("cannot open shader " + path + " (built by the rtdr_shaders target, installed in share/rtdr/shaders)");
   const std::streamsize bytes = file.tellg();
   if (bytes <= 0 || bytes % 4 != 0)
     throw Error("shader " + path + " is not SPIR-V (size " + std::to_string(bytes) + ")");

@@ -76,7 +76,8 @@ class GpuBuffer {
   float* mapped_ = nullptr;
 };
 
-// The SPIR-V called `stem` (modulate -> RTDR_SHADER_DIR/modulate.spv): a shader's file stem for SVGF's ports and
+// The SPIR-V called `stem` (modulate -> shaders/modulate.spv of the build folder, or of <prefix>/share/rtdr once
+// installed: core/data_path.h): a shader's file stem for SVGF's ports and
 // for a shader named after its folder, else <folder>_<stem> (filters/trmv/temporal.comp -> trmv_temporal), as
 // gpu/CMakeLists.txt names them.
 std::vector<uint32_t> load_shader(const std::string& stem);

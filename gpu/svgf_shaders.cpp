@@ -221,11 +221,11 @@ uint32_t SvgfShaders::groups_y(uint32_t height) const { return group_count(heigh
 
 void SvgfShaders::temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g,
                            const HistoryPlanes& prev, const GpuBuffer& illumination_out, Streams moments_out,
-                           Streams lambda, const TemporalPush& push) const {
+                           Streams weights, const TemporalPush& push) const {
   batch.dispatch(temporal_,
                  {&noisy, g.surface, g.depth_grad, g.mesh, g.motion, prev.illumination, prev.moments.direct,
                   prev.moments.indirect, prev.surface, prev.mesh, &illumination_out, moments_out.direct,
-                  moments_out.indirect, lambda.direct, lambda.indirect},
+                  moments_out.indirect, weights.direct, weights.indirect},
                  &push, groups_x(push.width), groups_y(push.height), "temporal");
 }
 

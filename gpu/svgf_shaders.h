@@ -136,10 +136,11 @@ class SvgfShaders {
  public:
   explicit SvgfShaders(VulkanContext& context);
 
-  // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments. `lambda`: A-SVGF's (lambda_max,
-  // alpha_i) per pixel and stream [ASVGF18 Eq. 15], read only with push.adaptive (else any buffers, unread).
+  // [SVGF17 Sec. 4.1, 4.2]: noisy -> illumination C' (variance 0) and moments. `weights`: A-SVGF's
+  // (lambda_max, alpha_i, alpha_mu_i, 0) per pixel and stream [ASVGF18 Eq. 15], read only with push.adaptive (else
+  // any buffers, unread).
   void temporal(ComputeBatch& batch, const GpuBuffer& noisy, const GBufferPlanes& g, const HistoryPlanes& prev,
-                const GpuBuffer& illumination_out, Streams moments_out, Streams lambda,
+                const GpuBuffer& illumination_out, Streams moments_out, Streams weights,
                 const TemporalPush& push) const;
   // [SVGF17 Sec. 4.2]: illumination C' and moments -> illumination (C', sigma'^2).
   void variance(ComputeBatch& batch, const GpuBuffer& illumination, Streams moments, const GBufferPlanes& g,
@@ -176,7 +177,7 @@ class SvgfShaders {
   void trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,
                     const GpuBuffer& clamped, const GpuBuffer& color_sigma_out, const GpuBuffer& weights_out,
                     const TrmvCleanupPush& push) const;
-  // A-SVGF [ASVGF18 Eq. 14-15, Sec. 3.5]: (delta^, Delta^) per stratum -> (lambda_max, alpha_i) per pixel and lambda
+  // A-SVGF [ASVGF18 Eq. 14-15, Sec. 3.5]: (delta^, Delta^) per stratum -> (lambda_max, alpha_i, alpha_mu_i, 0) per pixel and lambda
   // per stratum (filters/asvgf/adaptive_alpha_shared.h).
   void adaptive_alpha(ComputeBatch& batch, const GpuBuffer& gradient, const GpuBuffer& alpha_out,
                       const GpuBuffer& lambda_out, const AdaptiveAlphaPush& push) const;

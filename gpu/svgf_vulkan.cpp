@@ -2,8 +2,9 @@
 #include "gpu/svgf_vulkan.h"
 
 #include "core/error.h"
-#include "filters/asvgf/gradient_image.h"
 #include "filters/passes.h"
+#include "filters/svgf/variance.h"
+#include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_planes.h"
 
 #include <chrono>
@@ -18,18 +19,27 @@ namespace {
 
 using PlanePtr = std::unique_ptr<GpuBuffer>;
 
-// Commands per frame: A-SVGF's gradient passes per stream (the gradient image, its reconstruction's iterations,
-// lambda and alpha), the dispatches (temporal, variance, the levels, modulate, tonemap, TAA) and the two copies
-// of the results into readback memory.
-uint32_t gradient_commands(const SvgfOptions& o) {
-  return o.adaptive ? 2 * (2 + uint32_t(o.asvgf.gradient_levels)) : 0;
-}
+// Commands per frame: A-SVGF's passes (gpu/asvgf_vulkan.h), the dispatches (temporal, variance, the levels,
+// modulate, tonemap, TAA) and the two copies of the results into readback memory.
 uint32_t commands_per_frame(const SvgfOptions& o) {
-  return gradient_commands(o) + 5 + uint32_t(o.svgf.atrous_levels) + 2;
+  return (o.adaptive ? AsvgfVulkan::commands(o.asvgf) : 0) + 5 + uint32_t(o.svgf.atrous_levels) + 2;
 }
 
-// The name of each stream in the dump's layer names (filters/passes.h).
-std::string_view stream_name(int stream) { return stream == kDirectStream ? "direct" : "indirect"; }
+// The streams the dump names (filters/passes.h): both, or with streams = 1 the first alone, "combined" (the second
+// stream then filters zeros, GPU only: the golden SvgfFilter does not run it).
+struct DumpStreams {
+  std::vector<int> streams;
+  std::string name[2];
+};
+DumpStreams dump_streams(const SvgfParams& p) {
+  const std::vector<std::string> names = svgf_streams(p);
+  DumpStreams d;
+  for (size_t k = 0; k < names.size(); ++k) {
+    d.streams.push_back(int(k));
+    d.name[k] = names[k];
+  }
+  return d;
+}
 
 }  // namespace
 
@@ -40,11 +50,10 @@ class SvgfVulkan::Dump {
   using Unpack = std::function<void(const GpuBuffer& readback, Frame& dump)>;
 
   explicit Dump(VulkanContext& context) : context_(context) {}
-  // Copies per frame: A-SVGF's per stream (the gradient image, each iteration, lambda, alpha), the temporal output,
-  // the two moments planes, the variance, each level's output and prefiltered variance, the filtered output and the
-  // tone-mapped colour.
+  // Copies per frame: A-SVGF's (gpu/asvgf_vulkan.h), the temporal output, the two moments planes, the variance, each
+  // level's output and prefiltered variance, the filtered output and the tone-mapped colour.
   static uint32_t commands(const SvgfOptions& o) {
-    return gradient_commands(o) + 2 * uint32_t(o.adaptive) + 6 + 2 * uint32_t(o.svgf.atrous_levels);
+    return (o.adaptive ? AsvgfVulkan::dump_commands(o.asvgf) : 0) + 6 + 2 * uint32_t(o.svgf.atrous_levels);
   }
 
   void begin() { unpacks_.clear(); }
@@ -108,45 +117,14 @@ struct SvgfVulkan::Buffers {
   static Streams streams(const PlanePtr (&planes)[2]) { return {planes[0].get(), planes[1].get()}; }
 };
 
-// A-SVGF's planes [ASVGF18 Sec. 3.4, 3.5], per stream where they differ: made with the frame's size and the stratum
-// size s of its gradient samples (a frame with another s remakes them). Without A-SVGF only `alpha` exists, two
-// unread elements the temporal pass binds.
-struct SvgfVulkan::GradientBuffers {
-  int width, height, s, grid_width, grid_height;
-  // This frame's inputs: (C_i, gradient.prev_<stream>) per stream, gradient.source.
-  PlanePtr noisy_prev[2], source;
-  // Per stratum: the values (delta, Delta, l, Var), read and written in turn by the iterations, per stream; the
-  // strata's geometry (the same for both streams) and the samples' count; lambda per stream.
-  PlanePtr values[2][2], surface, depth_grad, mesh, samples, lambda[2];
-  // Per pixel: (lambda_max, alpha_i) per stream, what the temporal pass reads.
-  PlanePtr alpha[2];
-
-  // Without A-SVGF.
-  explicit GradientBuffers(VulkanContext& context) : width(0), height(0), s(0), grid_width(0), grid_height(0) {
-    for (PlanePtr& a : alpha) a = plane_buffer(context, 1, 1, TexelFormat::RG32F);
-  }
-  GradientBuffers(VulkanContext& context, int w, int h, int stratum_size)
-      : width(w), height(h), s(stratum_size), grid_width((w + s - 1) / s), grid_height((h + s - 1) / s) {
-    const int gw = grid_width, gh = grid_height;
-    for (int k = 0; k < 2; ++k) {
-      noisy_prev[k] = plane_buffer(context, w, h, TexelFormat::RGBA32F);
-      for (PlanePtr& v : values[k]) v = plane_buffer(context, gw, gh, TexelFormat::RGBA32F);
-      lambda[k] = plane_buffer(context, gw, gh, TexelFormat::R32F);
-      alpha[k] = plane_buffer(context, w, h, TexelFormat::RG32F);
-    }
-    source = plane_buffer(context, w, h, TexelFormat::R32UI);
-    surface = plane_buffer(context, gw, gh, TexelFormat::RGBA32F);
-    depth_grad = plane_buffer(context, gw, gh, TexelFormat::RG32F);
-    mesh = plane_buffer(context, gw, gh, TexelFormat::R32UI);
-    samples = plane_buffer(context, gw, gh, TexelFormat::R32UI);
-  }
-};
-
 SvgfVulkan::SvgfVulkan(VulkanContext& context, const SvgfOptions& options)
     : VulkanMethod(context, commands_per_frame(options) + Dump::commands(options)),
       context_(context),
       options_(options),
       shaders_(context) {
+  if (options_.adaptive) asvgf_ = std::make_unique<AsvgfVulkan>(context);
+  // Without A-SVGF the temporal port binds two unread weights records (svgf_shaders.h).
+  unread_weights_ = plane_buffer(context, 1, 1, TexelFormat::RGBA32F);
   validate(options_.svgf);
   validate(options_.asvgf);
   validate(options_.tonemap);
@@ -173,18 +151,26 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   }
   const int cur = frames_ & 1, prev = cur ^ 1;
   const bool has_history = frames_ > 0;
-  // A-SVGF's planes, for this frame's size and stratum size (all 0 without A-SVGF).
-  const int stratum_size = options_.adaptive ? frame_stratum_size(in, options_.name) : 0;
-  const int gw = stratum_size > 0 ? w : 0, gh = stratum_size > 0 ? h : 0;
-  if (!gradients_ || gradients_->width != gw || gradients_->height != gh || gradients_->s != stratum_size)
-    gradients_ = options_.adaptive ? std::make_unique<GradientBuffers>(context_, w, h, stratum_size)
-                                   : std::make_unique<GradientBuffers>(context_);
-  GradientBuffers& gb = *gradients_;
 
   // 1. Upload: the host packs this frame's planes into the device's records.
   const auto t0 = std::chrono::steady_clock::now();
   const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  const RgbPlane noisy[2] = {rgb_plane(in, "direct"), rgb_plane(in, "indirect")};  // [kDirectStream], [kIndirectStream]
+  // [kDirectStream], [kIndirectStream]; with streams = 1 their sum and zeros (filters/svgf/svgf.h's one_stream), and
+  // with A-SVGF each stream's gradient.prev_<stream>.
+  RgbPlane noisy[2];
+  FloatPlane prev_luminance[2];
+  if (options_.svgf.streams == 2) {
+    noisy[0] = rgb_plane(in, "direct");
+    noisy[1] = rgb_plane(in, "indirect");
+    if (asvgf_) prev_luminance[0] = in.float_channel("gradient.prev_direct");
+    if (asvgf_) prev_luminance[1] = in.float_channel("gradient.prev_indirect");
+  } else {
+    OneStream one = one_stream(in, options_.adaptive);
+    noisy[0] = std::move(one.illumination);
+    noisy[1] = RgbPlane(w, h);
+    prev_luminance[0] = std::move(one.prev_luminance);
+    prev_luminance[1] = FloatPlane(w, h);
+  }
   for (const int s : {kDirectStream, kIndirectStream}) pack_illumination(s, noisy[s], nullptr, *b.noisy);
   pack_rgb(rgb_plane(in, "albedo"), *b.albedo);
   pack_rgb(rgb_plane(in, "emission"), *b.emission);
@@ -192,22 +178,21 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   pack_ids(surface.mesh, *b.mesh[cur]);
   pack_vec2(surface.depth_grad, *b.depth_grad);
   pack_vec2(surface.motion, *b.motion);
-  if (options_.adaptive) {  // (C_i, gradient.prev_<stream>) per stream, and gradient.source (trace/gradients.h)
-    for (const int s : {kDirectStream, kIndirectStream}) {
-      pack_rgb(noisy[s], *gb.noisy_prev[s]);
-      const FloatPlane& prev_luminance = in.float_channel("gradient.prev_" + std::string(stream_name(s)));
-      float* records = gb.noisy_prev[s]->data();
-      for (size_t i = 0; i < prev_luminance.data.size(); ++i) records[4 * i + 3] = prev_luminance.data[i];
-    }
-    pack_ids(in.uint_channel("gradient.source"), *gb.source);
-  }
+  if (asvgf_) asvgf_->upload(in, noisy, prev_luminance, options_.name);  // the gradient samples (trace/gradients.h)
   const auto t1 = std::chrono::steady_clock::now();
 
   // 2. One batch of dispatches, in SvgfFilter's order [SVGF17 Sec. 3, 4].
   const SvgfParams& p = options_.svgf;
+  const DumpStreams ds = dump_streams(p);
   const uint32_t uw = uint32_t(w), uh = uint32_t(h);
-  // 2a. A-SVGF: each stream's alpha_i from its gradient samples [ASVGF18 Sec. 3.4, 3.5].
-  if (options_.adaptive) adaptive_alpha(d);
+  // 2a. A-SVGF: each stream's alpha_i from its gradient samples [ASVGF18 Sec. 3.4, 3.5] (gpu/asvgf_vulkan.h).
+  if (asvgf_) {
+    const AsvgfVulkan::DumpCopy copy = [&](const GpuBuffer& plane, Dump::Unpack unpack) {
+      d->copy(batch_, plane, std::move(unpack));
+    };
+    asvgf_->record(batch_, shaders_, *b.surface[cur], *b.depth_grad, *b.mesh[cur], options_.svgf, options_.asvgf,
+                   d ? &copy : nullptr, ds.name);
+  }
   const GBufferPlanes g{b.surface[cur].get(), b.depth_grad.get(), b.mesh[cur].get(), b.motion.get()};
   const HistoryPlanes history{b.history[prev].get(), Buffers::streams(b.moments[prev]), b.surface[prev].get(),
                               b.mesh[prev].get()};
@@ -218,25 +203,28 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   temporal.adaptive = options_.adaptive ? 1u : 0u;  // [ASVGF18 Eq. 15] per pixel; the history rule of temporal.h
   temporal.restart_history = options_.adaptive && options_.asvgf.history_rule == 0 ? 1u : 0u;
   shaders_.temporal(batch_, *b.noisy, g, history, temporal_out, Buffers::streams(b.moments[cur]),
-                    Buffers::streams(gb.alpha), temporal);
+                    asvgf_ ? asvgf_->weights() : Streams{unread_weights_.get(), unread_weights_.get()}, temporal);
   if (d) {
-    d->copy(batch_, temporal_out, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kTemporal, stream_name(s), -1, unpack_illumination(r, w, h, s));
+    d->copy(batch_, temporal_out, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams)
+        dump_layer(&f, layers::kTemporal, ds.name[s], -1, unpack_illumination(r, w, h, s));
     });
-    for (const int s : {kDirectStream, kIndirectStream})
-      d->copy(batch_, *b.moments[cur][s], [w, h, s](const GpuBuffer& r, Frame& f) {  // (mu1', mu2', n, 0)
-        dump_layer(&f, layers::kMoment1, stream_name(s), -1, unpack_channel(r, w, h, 4, 0));
-        dump_layer(&f, layers::kMoment2, stream_name(s), -1, unpack_channel(r, w, h, 4, 1));
-        dump_layer(&f, layers::kHistoryLength, stream_name(s), -1, unpack_channel(r, w, h, 4, 2));
+    for (const int s : ds.streams)
+      d->copy(batch_, *b.moments[cur][s], [w, h, s, ds, mesh = surface.mesh, p](const GpuBuffer& r, Frame& f) {
+        // (mu1', mu2', n, 0); and which variance the variance port takes at each pixel: the golden pass's test of
+        // n (variance_is_spatial), which the port makes on the same n.
+        const FloatPlane n = unpack_channel(r, w, h, 4, 2);
+        dump_layer(&f, layers::kMoment1, ds.name[s], -1, unpack_channel(r, w, h, 4, 0));
+        dump_layer(&f, layers::kMoment2, ds.name[s], -1, unpack_channel(r, w, h, 4, 1));
+        dump_layer(&f, layers::kHistoryLength, ds.name[s], -1, n);
+        dump_layer(&f, layers::kVarianceSpatial, ds.name[s], -1, variance_spatial_plane(n, mesh, p));
       });
   }
   shaders_.variance(batch_, temporal_out, Buffers::streams(b.moments[cur]), g, *b.variance,
                     variance_push(uw, uh, p));
   if (d)
-    d->copy(batch_, *b.variance, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kVariance, stream_name(s), -1, unpack_variance(r, w, h, s));
+    d->copy(batch_, *b.variance, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams) dump_layer(&f, layers::kVariance, ds.name[s], -1, unpack_variance(r, w, h, s));
     });
   const GpuBuffer* filtered = p.atrous_levels > 0 ? b.variance.get() : &temporal_out;
   for (int level = 0; level < p.atrous_levels; ++level) {
@@ -246,22 +234,21 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
                     p.kernel_size);
     filtered = out;
     if (d) {
-      d->copy(batch_, *out, [w, h, level](const GpuBuffer& r, Frame& f) {
-        for (const int s : {kDirectStream, kIndirectStream}) {
-          dump_layer(&f, layers::kLevel, stream_name(s), level, unpack_illumination(r, w, h, s));
-          dump_layer(&f, layers::kLevelVariance, stream_name(s), level, unpack_variance(r, w, h, s));
+      d->copy(batch_, *out, [w, h, level, ds](const GpuBuffer& r, Frame& f) {
+        for (const int s : ds.streams) {
+          dump_layer(&f, layers::kLevel, ds.name[s], level, unpack_illumination(r, w, h, s));
+          dump_layer(&f, layers::kLevelVariance, ds.name[s], level, unpack_variance(r, w, h, s));
         }
       });
-      d->copy(batch_, *b.prefiltered, [w, h, level](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
-        for (const int s : {kDirectStream, kIndirectStream})
-          dump_layer(&f, layers::kLevelPrefiltered, stream_name(s), level, unpack_channel(r, w, h, 2, s));
+      d->copy(batch_, *b.prefiltered, [w, h, level, ds](const GpuBuffer& r, Frame& f) {  // (direct, indirect)
+        for (const int s : ds.streams)
+          dump_layer(&f, layers::kLevelPrefiltered, ds.name[s], level, unpack_channel(r, w, h, 2, s));
       });
     }
   }
   if (d)
-    d->copy(batch_, *filtered, [w, h](const GpuBuffer& r, Frame& f) {
-      for (const int s : {kDirectStream, kIndirectStream})
-        dump_layer(&f, layers::kFiltered, stream_name(s), -1, unpack_illumination(r, w, h, s));
+    d->copy(batch_, *filtered, [w, h, ds](const GpuBuffer& r, Frame& f) {
+      for (const int s : ds.streams) dump_layer(&f, layers::kFiltered, ds.name[s], -1, unpack_illumination(r, w, h, s));
     });
   shaders_.modulate(batch_, *filtered, *b.albedo, *b.emission, *b.colour, modulate_push(uw, uh));
   shaders_.tonemap(batch_, *b.colour, *b.tonemapped, tonemap_push(uw, uh, options_.tonemap));
@@ -291,77 +278,6 @@ Frame SvgfVulkan::filter(const Frame& in, Frame* dump) {
   times_[kTransferPass] += std::chrono::duration<double, std::milli>((t1 - t0) + (t3 - t2)).count();
   if (d) d->unpack(*dump);
   return out;
-}
-
-void SvgfVulkan::adaptive_alpha(Dump* d) {
-  const Buffers& b = *buffers_;
-  const GradientBuffers& gb = *gradients_;
-  const int w = gb.width, h = gb.height, s = gb.s, gw = gb.grid_width, gh = gb.grid_height;
-  const uint32_t ugw = uint32_t(gw), ugh = uint32_t(gh);
-  const SvgfParams& p = options_.svgf;
-  // A stratum plane's channel c, replicated to the frame's pixels as the golden dump does (gradient_image.h).
-  const auto strata = [w, h, s, gw, gh](const GpuBuffer& r, int channels, int c) {
-    return replicate_strata(unpack_channel(r, gw, gh, channels, c), s, w, h);
-  };
-  const int cur = frames_ & 1;
-  for (const int k : {kDirectStream, kIndirectStream}) {
-    const std::string name(stream_name(k));
-    // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13]. Its samples' count is not read
-    //    back: a rendered frame holds at most one sample per stratum (gradient_image.h; the per-pass port checks).
-    const GradientImagePlanes in{gb.noisy_prev[k].get(), gb.source.get(), b.surface[cur].get(), b.depth_grad.get(),
-                                 b.mesh[cur].get()};
-    shaders_.gradient_image(batch_, in, *gb.values[k][0], *gb.surface, *gb.depth_grad, *gb.mesh, *gb.samples,
-                            GradientImagePush{.width = uint32_t(w),
-                                              .height = uint32_t(h),
-                                              .grid_width = ugw,
-                                              .grid_height = ugh,
-                                              .stratum_size = s});
-    if (d)
-      d->copy(batch_, *gb.values[k][0], [strata, name](const GpuBuffer& r, Frame& f) {
-        dump_layer(&f, layers::kGradientDelta, name, -1, strata(r, 4, 0));
-        dump_layer(&f, layers::kGradientNorm, name, -1, strata(r, 4, 1));
-        dump_layer(&f, layers::kGradientLuminance, name, -1, strata(r, 4, 2));
-        dump_layer(&f, layers::kGradientVariance, name, -1, strata(r, 4, 3));
-      });
-    // 2. Its reconstruction: iteration `level` reads values[level % 2] and writes the other [ASVGF18 Eq. 7-12].
-    const int levels = options_.asvgf.gradient_levels;
-    for (int level = 0; level < levels; ++level) {
-      const GpuBuffer& out = *gb.values[k][(level + 1) % 2];
-      shaders_.gradient_atrous(batch_, *gb.values[k][level % 2], *gb.surface, *gb.depth_grad, *gb.mesh, out,
-                               GradientAtrousPush{.grid_width = ugw,
-                                                  .grid_height = ugh,
-                                                  .level = level,
-                                                  .stratum_size = s,
-                                                  .sigma_z = p.sigma_z,
-                                                  .sigma_n = p.sigma_n,
-                                                  .sigma_l = p.sigma_l,
-                                                  .epsilon = p.epsilon});
-      if (d)
-        d->copy(batch_, out, [strata, name, level](const GpuBuffer& r, Frame& f) {
-          dump_layer(&f, layers::kGradientLevelDelta, name, level, strata(r, 4, 0));
-          dump_layer(&f, layers::kGradientLevelNorm, name, level, strata(r, 4, 1));
-          dump_layer(&f, layers::kGradientLevelLuminance, name, level, strata(r, 4, 2));
-          dump_layer(&f, layers::kGradientLevelVariance, name, level, strata(r, 4, 3));
-        });
-    }
-    // 3. lambda and alpha_i [ASVGF18 Eq. 14-15, Sec. 3.5], from the last iteration's values.
-    shaders_.adaptive_alpha(batch_, *gb.values[k][levels % 2], *gb.alpha[k], *gb.lambda[k],
-                            AdaptiveAlphaPush{.width = uint32_t(w),
-                                              .height = uint32_t(h),
-                                              .grid_width = ugw,
-                                              .grid_height = ugh,
-                                              .stratum_size = s,
-                                              .radius = options_.asvgf.alpha_max_radius,
-                                              .alpha = p.alpha});
-    if (d) {
-      d->copy(batch_, *gb.lambda[k], [strata, name](const GpuBuffer& r, Frame& f) {
-        dump_layer(&f, layers::kLambda, name, -1, strata(r, 1, 0));
-      });
-      d->copy(batch_, *gb.alpha[k], [w, h, name](const GpuBuffer& r, Frame& f) {  // (lambda_max, alpha_i)
-        dump_layer(&f, layers::kAlpha, name, -1, unpack_channel(r, w, h, 2, 1));
-      });
-    }
-  }
 }
 
 Probe SvgfVulkan::probe(const std::string&, int, int, const std::string&, int) const {

@@ -1,7 +1,7 @@
 // SVGF and A-SVGF, the whole pipeline, on a Vulkan device: the Method behind `rtdr filter --backend vulkan
 // --method svgf|asvgf`. The same passes in the same order as SvgfFilter (filters/svgf/svgf.h) with method "svgf" or
 // "asvgf" - for asvgf first, per stream, the gradient image, its reconstruction's iterations and lambda and alpha_i
-// (filters/asvgf/*.comp) [ASVGF18 Sec. 3.4, 3.5]; then temporal accumulation (with asvgf's alpha_i per pixel),
+// (gpu/asvgf_vulkan.h, filters/asvgf/*.comp) [ASVGF18 Sec. 3.4, 3.5]; then temporal accumulation (with asvgf's alpha_i per pixel),
 // variance, the a-trous levels (the level `history_level` kept as next frame's colour history), remodulation, tone
 // mapping and TAA - each one dispatch of the ports in filters/svgf/*.comp and filters/taa/taa.comp, both streams
 // at once.
@@ -24,6 +24,7 @@
 #pragma once
 
 #include "filters/svgf/svgf.h"
+#include "gpu/asvgf_vulkan.h"
 #include "gpu/svgf_shaders.h"
 #include "gpu/vulkan_method.h"
 
@@ -46,17 +47,14 @@ class SvgfVulkan : public VulkanMethod {
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
 
  private:
-  struct Buffers;          // every device plane, made for one frame size
-  struct GradientBuffers;  // A-SVGF's planes, for one frame size and stratum size
-  class Dump;              // the copies behind filter()'s dump, and their readback buffers
-  // A-SVGF's passes for both streams, recorded into batch_: the gradient image, its reconstruction, lambda and
-  // alpha_i [ASVGF18 Sec. 3.4, 3.5], with their dump copies when d is given.
-  void adaptive_alpha(Dump* d);
+  struct Buffers;  // every device plane, made for one frame size
+  class Dump;      // the copies behind filter()'s dump, and their readback buffers
   VulkanContext& context_;
   SvgfOptions options_;
   SvgfShaders shaders_;
   std::unique_ptr<Buffers> buffers_;
-  std::unique_ptr<GradientBuffers> gradients_;
+  std::unique_ptr<AsvgfVulkan> asvgf_;  // A-SVGF's passes (with options_.adaptive)
+  std::unique_ptr<GpuBuffer> unread_weights_;  // what the temporal port binds without them
   std::unique_ptr<Dump> dump_;
   int frames_ = 0;  // frames since the last reset: 0 means no history
 };

@@ -37,8 +37,10 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                       !surface_sized(prev.surface, pw, ph)))
     throw Error("temporal_vulkan: the history planes are not all " + std::to_string(pw) + "x" + std::to_string(ph) +
                 " like the history colour");
-  if (adaptive && !sized(*adaptive->lambda, w, h))
-    throw Error("temporal pass: the lambda plane is not the frame's size");
+  const auto frame_sized = [&](const FloatPlane* p) { return p && sized(*p, w, h); };
+  if (adaptive && !(frame_sized(adaptive->lambda) && frame_sized(adaptive->alpha) &&
+                    frame_sized(adaptive->alpha_moments)))
+    throw Error("temporal_vulkan: the lambda and alpha planes are not the frame's size");
   if (params.max_history < 0)
     throw Error("temporal_vulkan: max_history must be >= 0, got " + std::to_string(params.max_history));
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
@@ -71,10 +73,15 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F),
                                                  plane_buffer(context, w, h, TexelFormat::RGBA32F)};
 
-  // A-SVGF's (lambda_max, alpha_i) records; the shader reads lambda_max (x) alone. Without adaptive: one unread one.
-  const auto lambda = plane_buffer(context, adaptive ? w : 1, adaptive ? h : 1, TexelFormat::RG32F);
+  // A-SVGF's (lambda_max, alpha_i, alpha_mu_i, 0) records, as the adaptive alpha port writes them. Without
+  // adaptive: one unread one.
+  const auto weights = plane_buffer(context, adaptive ? w : 1, adaptive ? h : 1, TexelFormat::RGBA32F);
   if (adaptive)
-    for (size_t i = 0; i < adaptive->lambda->data.size(); ++i) lambda->data()[2 * i] = adaptive->lambda->data[i];
+    for (size_t i = 0; i < adaptive->lambda->data.size(); ++i) {
+      weights->data()[4 * i + 0] = adaptive->lambda->data[i];
+      weights->data()[4 * i + 1] = adaptive->alpha->data[i];
+      weights->data()[4 * i + 2] = adaptive->alpha_moments->data[i];
+    }
 
   TemporalPush push = temporal_push(uint32_t(w), uint32_t(h), uint32_t(hw), uint32_t(hh), params);
   push.adaptive = adaptive ? 1u : 0u;
@@ -86,7 +93,7 @@ TemporalOutput temporal_vulkan(VulkanContext& context, const RgbPlane& noisy, co
         shaders.temporal(batch, *noisy_buffer, {surface.get(), grad.get(), mesh.get(), motion.get()},
                          {prev_color.get(), {prev_moments.get(), prev_moments.get()}, prev_surface.get(),
                           prev_mesh.get()},
-                         *outputs[0], {outputs[1].get(), outputs[2].get()}, {lambda.get(), lambda.get()}, push);
+                         *outputs[0], {outputs[1].get(), outputs[2].get()}, {weights.get(), weights.get()}, push);
       },
       ms);
 

@@ -15,7 +15,12 @@ ForwardProjection forward_project(const Scene& scene, const ScenePose& cur_pose,
   const glm::vec3 projected = cur_view.project(world);
   f.screen = glm::vec2(projected);
   f.depth = projected.z;
-  if (f.depth < cur_view.znear) return f;  // behind the camera: no screen position
+  if (!(f.depth >= cur_view.znear)) return f;  // behind the camera (or NaN): no screen position
+  // Off screen, tested as floats first (false for NaN too): a sample far off screen, or a previous frame's
+  // barycentrics of 1e30 read from a file, would put floor() beyond the range of an int.
+  if (!(f.screen.x >= 0.0f && f.screen.y >= 0.0f && f.screen.x < float(cur_vis.width) &&
+        f.screen.y < float(cur_vis.height)))
+    return f;
   // The pixel whose square [x, x+1) x [y, y+1) contains it.
   const int x = int(std::floor(f.screen.x)), y = int(std::floor(f.screen.y));
   if (x < 0 || y < 0 || x >= cur_vis.width || y >= cur_vis.height) return f;

@@ -8,13 +8,13 @@ SPEED = [
     new_markdown_cell("""# Speed versus accuracy
 
 Every method, and the SVGF parameter sweeps, on one scene, measured by `rtdr eval` against reference
-frames. `RTDR_METRICS` names the `metrics.csv` (default: what `bash tools/demo.sh` writes). RMSE is on linear
+frames. `RTDR_METRICS` names the `metrics.csv` (default: pillars' in `bash tools/demo.sh --full`). RMSE is on linear
 HDR radiance; SSIM and FLIP on tone-mapped display values (eval/experiment.h). Times are the golden CPU
 passes on this machine: they rank the methods, they are not GPU times."""),
     new_code_cell(COMMON + '''
 import csv, math
 
-METRICS = os.environ.get("RTDR_METRICS", "out/demo/metrics.csv")
+METRICS = os.environ.get("RTDR_METRICS", "out/demo/full/pillars/metrics.csv")
 with open(METRICS, newline="") as f:
     rows = list(csv.DictReader(f))
 def label(r):

@@ -467,10 +467,10 @@ print(f"fence: of the {(splat_valid & floor).sum()} floor pixels the splat reach
   for the mirror, with no special handling" (motion/glossy.h). The shipped scenes have no curved reflector, so
   there is nothing to measure here.
 - The draw. Each frame draws $m^R$ anew, so even where nothing changes the history is fetched from a different
-  place of the footprint every frame. filters/trmv/README.md measured it on this scene at 320x180: "the
-  temporal error rises from 0.0097 to 0.0113, and SSIM falls (0.681 to 0.673; 0.665 to 0.612 without the
-  clamp, where nothing bounds the scattered fetches)", against a gain on the floor's structured error of
-  "0.45 % with the clamp, 1.0 % without". The cell compares, at each floor pixel, this frame's vector with the
+  place of the footprint every frame. filters/trmv/README.md measures it on this scene at 320x180 (its Fig. 11
+  table): with the glossy vector the temporal error is higher and SSIM lower than with the surface motion, with
+  the clamp and far more without it, where nothing bounds the scattered fetches; against that, the stability
+  table there shows a gain on the floor's structured error of under a per cent. The cell compares, at each floor pixel, this frame's vector with the
   previous frame's: the surface motion changes by a fraction of a pixel, the glossy vector jumps."""),
     new_code_cell("""steady = metal & (glossy_prev["material.metallic"] == 1) & glossy_valid & (glossy_prev["motion.glossy.valid"] == 1)
 change = {name: np.hypot(glossy[name + ".X"] - glossy_prev[name + ".X"], glossy[name + ".Y"] - glossy_prev[name + ".Y"])[steady]
@@ -485,8 +485,8 @@ assert np.median(change["motion.glossy"]) > 10 * np.median(change["motion"])""")
   (motion/dual.h). The cones re-shade the borrowed history for the pixel's own normal; they pay only where
   $x^O$ lands on a surface that faces elsewhere. filters/trmv/README.md, "The paper's Fig. 12 on our occlusion
   scene (dual vector, cones)": "Behind a translating box x^O lands on the same flat wall as the pixel, where the
-  colour at x^O is already the right history", so there the cones cost noise (band RMSE 0.3242 with the cones,
-  0.3120 with the colour at x^O). The cell counts where $x^O$ lands on the pixel's own surface, or on another
+  colour at x^O is already the right history", so there the cones cost noise (the band RMSE with the cones
+  and with the colour at x^O, in that README's stability table). The cell counts where $x^O$ lands on the pixel's own surface, or on another
   one that faces the same way. In the frames we tried (frame 40 at 160x90 and 320x180) every $x^O$ did, but for
   the nearest-pixel reads onto the box's edge pixel of section 4: nothing for the cones to fix.
 - Only the trailing side. A box uncovers the wall behind it and covers the wall ahead of it: every disoccluded

@@ -12,14 +12,13 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/regular_file.h"
 #include "scenes/gltf_parts.h"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 
 namespace rtdr {
@@ -41,11 +40,15 @@ std::string one_line(std::string text) {
   return text.empty() ? "tinygltf could not parse it" : text;
 }
 
-tinygltf::Model parse_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(path + ": no such scene file (a bare name like 'cornell' means " RTDR_SCENE_DIR "/cornell.gltf)");
+// Parses the scene file at `path`; `files` reads it, and every file it names (gltf_files.cpp).
+tinygltf::Model parse_file(const std::string& path, gltf::SceneFiles& files) {
+  const std::string kind = describe_path_kind(path);
+  if (kind == "missing")
+    throw Error(path + ": no such scene file (a bare name like 'cornell' means " + shipped_scene_dir() +
+                "/cornell.gltf)");
+  if (kind != "a regular file") throw Error(path + ": the scene file is " + kind + ", not a regular file");
   tinygltf::TinyGLTF reader;
+  files.attach(reader);
   tinygltf::Model model;
   std::string err, warn;  // warnings (unknown extensions and the like) are not errors for us
   bool ok = false;
@@ -55,6 +58,8 @@ tinygltf::Model parse_file(const std::string& path) {
   } catch (const std::exception& e) {  // tinygltf's JSON parser and containers may throw
     err = e.what();
   }
+  // A refused file is an error even where tinygltf would go on without it (an image it cannot load).
+  if (!files.refusal().empty()) throw Error(files.refusal());
   if (!ok) throw Error(path + ": not a valid glTF file: " + one_line(err));
   return model;
 }
@@ -309,14 +314,12 @@ void append_default_material(Scene& scene) {
   scene.materials.push_back(default_material);
 }
 
-// Scene::content_hash: the file's bytes, then each buffer's bytes and each decoded image (size, components, bits,
-// pixels) as tinygltf loaded them, whether embedded or from files beside the scene.
-std::string content_hash(const std::string& path, const tinygltf::Model& model) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) throw Error(path + ": cannot read the scene file again to hash it");
+// Scene::content_hash: the file's bytes (those tinygltf parsed, not read again), then each buffer's bytes and each
+// decoded image (size, components, bits, pixels) as tinygltf loaded them, whether embedded or from files beside
+// the scene.
+std::string content_hash(const std::vector<unsigned char>& bytes, const tinygltf::Model& model) {
   Fnv1a64 h;
-  h.text(bytes);
+  h.text(std::string(bytes.begin(), bytes.end()));
   for (const tinygltf::Buffer& buffer : model.buffers) h.text("buffer").bytes(buffer.data.data(), buffer.data.size());
   for (const tinygltf::Image& image : model.images) {
     const int32_t shape[4] = {image.width, image.height, image.component, image.bits};
@@ -337,10 +340,11 @@ Scene load_scene(const std::string& name_or_path) {
   Scene scene;
   scene.source = resolve_scene_path(name_or_path);
   scene.name = std::filesystem::path(scene.source).stem().string();
-  const tinygltf::Model model = parse_file(scene.source);
+  gltf::SceneFiles files(scene.source);  // what tinygltf may read and decode (gltf_files.cpp)
+  const tinygltf::Model model = parse_file(scene.source, files);
   const Source src{model, scene.source};
   check_version(src);
-  scene.content_hash = content_hash(scene.source, model);
+  scene.content_hash = content_hash(files.scene_bytes(), model);
 
   gltf::load_materials(src, scene);
   std::vector<int> first_mesh_of_gltf_mesh;  // glTF mesh -> its primitive 0's Mesh

@@ -11,8 +11,8 @@
 
 namespace rtdr {
 
-// A bare name such as "cornell" is a shipped scene, RTDR_SCENE_DIR/cornell.gltf; anything containing a '/'
-// or ending in .gltf or .glb is a path.
+// A bare name such as "cornell" is a shipped scene, shipped_scene_path("cornell") (scenes/catalog.h); anything
+// containing a '/' or ending in .gltf or .glb is a path.
 std::string resolve_scene_path(const std::string& name_or_path);
 
 // Loads the scene from a .gltf (JSON, buffers embedded or beside it) or .glb (binary) file.

@@ -4,6 +4,8 @@
 //   gltf_materials.cpp  materials and base colour textures, the animated emissive strength
 //   gltf_animation.cpp  animation channels -> the nodes' translation, rotation and scale tracks
 //
+//   gltf_files.cpp      the files tinygltf may read: regular files below the scene's folder
+//
 // Only scenes/gltf_*.cpp include this header (tinygltf is a private dependency of rtdr_scenes).
 #pragma once
 
@@ -12,10 +14,35 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace rtdr::gltf {
+
+// The files tinygltf reads for the scene at `scene_path` (the scene file, and the buffers and images its URIs
+// name): regular files below the scene file's folder, each within the memory budget, and images PNG or JPEG whose
+// declared size fits the budget (gltf_files.cpp says why). attach() gives tinygltf our file and image callbacks;
+// after a load, refusal() says why a file or image was refused ("<scene>: ..."), or is empty when none was.
+class SceneFiles {
+ public:
+  explicit SceneFiles(const std::string& scene_path);
+  void attach(tinygltf::TinyGLTF& reader);  // the callbacks point at this object: keep it alive while tinygltf loads
+  const std::string& refusal() const { return refusal_; }
+  // The scene file's bytes as tinygltf read and parsed them (empty before the load).
+  const std::vector<unsigned char>& scene_bytes() const { return scene_bytes_; }
+  void keep_scene_bytes(const std::vector<unsigned char>& bytes) { scene_bytes_ = bytes; }
+  const std::string& scene() const { return scene_; }
+  // Whether tinygltf may read `path`; records the refusal of a path outside the scene's folder.
+  bool allowed(const std::string& path);
+  void refuse(const std::string& why);  // keeps the first
+
+ private:
+  std::string scene_, base_;
+  std::filesystem::path folder_;
+  std::string refusal_;
+  std::vector<unsigned char> scene_bytes_;
+};
 
 // The file being loaded: tinygltf's parsed model and the path that error messages name.
 struct Source {

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -199,4 +200,62 @@ TEST_CASE("rtdr eval runs asvgf and trmv on the shader ports beside the golden p
       CHECK(rmse_port != 0.0);
       CHECK(std::abs(rmse_port - rmse) <= guard * (rmse + 1e-2));
     }
+}
+
+TEST_CASE("rtdr eval --help lists the method names, and no help text says a port runs svgf alone") {
+  const fs::path dir = scratch("help");
+  const RunResult eval = run_rtdr("eval --help", dir);
+  REQUIRE(eval.exit_code == 0);
+  for (const std::string& name : rtdr::method_names()) CHECK_THAT(eval.out, Catch::Contains(name));
+  CHECK_THAT(eval.out, Catch::Contains("svgf, asvgf, a-eaw, accum, eaw, eaw-accum, none, trmv"));
+  CHECK_THAT(eval.out, !Catch::Contains("runs svgf on the"));
+  const RunResult compare = run_rtdr("compare --help", dir);
+  REQUIRE(compare.exit_code == 0);
+  CHECK_THAT(compare.out, !Catch::Contains("run SVGF") && Catch::Contains("svgf, asvgf or trmv"));
+}
+
+// A file name is the user's text, never TeX. The scene `$\sqrt$.gltf` (pillars, copied) names
+// the charts' titles; matplotlib would read "$\sqrt$" as mathtext and fail after all the rendering.
+TEST_CASE("rtdr eval: a scene file named with TeX in it gives its charts, its name shown as written") {
+  const fs::path dir = scratch("tex_name");
+  const fs::path scene = dir / "$\\sqrt$.gltf";
+  fs::copy_file(fs::path(RTDR_SOURCE_DIR) / "scenes/pillars.gltf", scene);
+  const fs::path out = dir / "out";
+  const RunResult r = run_rtdr_args({"eval", "--scene", scene.string(), "--methods", "accum,none", "--frames", "0-2",
+                                     "--size", "24x14", "--ref-spp", "2", "--cache", "", "--out", out.string()},
+                                    dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(files_in(out) == std::set<std::string>{"error_over_frames.png", "metrics.csv", "speed_vs_accuracy.png",
+                                               "strip.png", "temporal_error.png"});
+}
+
+// strip.png (eval/strip.py) shows every method that ran, parameters included, and none's tile is the input's.
+TEST_CASE("rtdr eval: the strip shows each method that ran once, up to --strip-max, and bad strip options fail early") {
+  const fs::path dir = scratch("strip");
+  const std::string base = "eval --scene pillars --frames 0-1 --size 24x14 --ref-spp 2 --cache " +
+                           (dir / "cache").string() + " --methods none,accum,accum:alpha=0.5";
+  const RunResult r = run_rtdr(base + " --out " + (dir / "all").string(), dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("strip.png, in reading order: | 1 spp input (= none) | accum | accum:alpha=0.5 | "
+                                    "reference 2 spp\n"));
+  const RunResult capped = run_rtdr(base + " --strip-max 1 --strip-crop 0,0,12,12 --out " + (dir / "one").string(), dir);
+  REQUIRE(capped.exit_code == 0);
+  CHECK_THAT(capped.out, Catch::Contains("strip.png shows the first 1 of the 2 methods") &&
+                             Catch::Contains("in reading order: | 1 spp input (= none) | accum | reference"));
+  const RunResult chosen = run_rtdr(base + " --strip accum:alpha=0.5 --out " + (dir / "chosen").string(), dir);
+  REQUIRE(chosen.exit_code == 0);
+  CHECK_THAT(chosen.out, Catch::Contains("in reading order: | 1 spp input (= none) | accum:alpha=0.5 | reference"));
+  // Refused before anything is rendered: nothing in the fresh cache, no output.
+  for (const std::string bad : {"--strip-crop 20,0,8,8", "--strip-crop 1,2,3", "--strip svgf", "--chart-metrics psnr"}) {
+    INFO(bad);
+    const fs::path cache = dir / "bad_cache";
+    const RunResult b = run_rtdr("eval --scene pillars --frames 0-1 --size 24x14 --methods accum " + bad + " --cache " +
+                                     cache.string() + " --out " + (dir / "bad").string(), dir);
+    CHECK(b.exit_code == 1);
+    CHECK(std::count(b.err.begin(), b.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir / "bad"));
+    CHECK(files_in(cache).empty());
+  }
 }

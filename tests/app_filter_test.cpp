@@ -57,12 +57,13 @@ std::set<std::string> channels(const rtdr::Frame& f) {
 
 // The layers --dump-passes adds for svgf with its 5 a-trous levels, as its passes declare them
 // (filters/passes.h, docs/buffers.md "Filter passes"). Counted by hand: per stream, temporal (3 channels),
-// the two moments, the history length, the variance, per level 3 + 2, and filtered (3); then filter.tonemapped.
+// the two moments, the history length, the variance and which estimate it is, per level 3 + 2, and filtered (3);
+// then filter.tonemapped.
 std::set<std::string> dump_channels() {
   const std::vector<std::string> declared = rtdr::make_method("svgf")->dump_channels();
   const std::set<std::string> names(declared.begin(), declared.end());
   CHECK(names.size() == declared.size());
-  CHECK(names.size() == 2 * (3 + 2 + 1 + 1 + 5 * (3 + 2) + 3) + 3);
+  CHECK(names.size() == 2 * (3 + 2 + 1 + 1 + 1 + 5 * (3 + 2) + 3) + 3);
   return names;
 }
 
@@ -302,4 +303,23 @@ TEST_CASE("bad filter and probe input: one error line, a non-zero exit and no ou
   CHECK(r.err.find("frame_0001.exr") != std::string::npos);
   CHECK(r.err.find("frame_0000.exr") != std::string::npos);
   fs::remove_all(out);
+}
+
+TEST_CASE("rtdr probe with a pass the method does not run lists the passes it runs, for every method") {
+  const fs::path dir = scratch("probe_passes");
+  const std::string in = (dir / "in").string();
+  REQUIRE(run_rtdr("render --scene pillars --frames 0-1 --size 24x14 --gradients --shading-samples 2 --out " + in, dir)
+              .exit_code == 0);
+  for (const std::string& method : rtdr::method_names()) {
+    INFO(method);
+    std::string passes;
+    for (const std::string& p : rtdr::make_method(method)->probe_passes()) passes += (passes.empty() ? "" : ", ") + p;
+    for (const std::string pass : {"nonsense", method == "trmv" ? "atrous" : "trmv_cleanup"}) {
+      const RunResult r = run_rtdr("probe --method " + method + " --in " + in + " --frame 1 --pixel 3,3 --pass " + pass,
+                                   dir);
+      CHECK(r.exit_code == 1);
+      CHECK(r.err == "rtdr: error: --pass '" + pass + "' is not a pass of method " + method +
+                         " with these parameters; its passes: " + passes + " (rtdr probe --help says what each prints)\n");
+    }
+  }
 }

@@ -34,18 +34,19 @@ TEST_CASE("Sec. 3.5: the maximum over 3x3 strata gives alpha = 1 on exactly 9x9 
   GradientValues v = flat_grid(10, 8).values;
   v.delta.at(4, 3) = 2.0f;  // lambda = 1 in stratum (4, 3), 0 elsewhere
   v.norm.at(4, 3) = 2.0f;
-  const AdaptiveAlpha a = adaptive_alpha_pass(v, 3, 30, 24, 0.1f, 1);
+  const AdaptiveAlpha a = adaptive_alpha_pass(v, 3, 30, 24, {0.1f, 0.2f, 1});
   CHECK(a.lambda.at(4, 3) == 1.0f);
   int dropped = 0;
   for (int y = 0; y < 24; ++y)
     for (int x = 0; x < 30; ++x) {
       const bool near = std::abs(x / 3 - 4) <= 1 && std::abs(y / 3 - 3) <= 1;
       CHECK(a.alpha.at(x, y) == (near ? 1.0f : 0.1f));
+      CHECK(a.alpha_moments.at(x, y) == (near ? 1.0f : 0.2f));  // the same lambda, the moments' base weight
       dropped += a.alpha.at(x, y) == 1.0f;
     }
   CHECK(dropped == 9 * 9);
   // Radius 0: the stratum alone, 3x3 pixels.
-  const AdaptiveAlpha alone = adaptive_alpha_pass(v, 3, 30, 24, 0.1f, 0);
+  const AdaptiveAlpha alone = adaptive_alpha_pass(v, 3, 30, 24, {0.1f, 0.2f, 0});
   int alone_dropped = 0;
   for (float alpha : alone.alpha.data) alone_dropped += alpha == 1.0f;
   CHECK(alone_dropped == 3 * 3);

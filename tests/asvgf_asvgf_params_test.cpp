@@ -11,7 +11,11 @@ TEST_CASE("asvgf parameters: the paper's defaults, checked ranges, whole numbers
   CHECK(p.gradient_levels == 5);   // five iterations [ASVGF18 Sec. 3.4]
   CHECK(p.alpha_max_radius == 1);  // 3x3 strata [ASVGF18 Sec. 3.5]
   CHECK(p.history_rule == 0);
-  CHECK(rtdr::asvgf_param_table().size() == 3);
+  CHECK(rtdr::asvgf_param_table().size() == 7);
+  CHECK(p.gradient_normalize == 0);  // after the reconstruction, Eq. 14 as printed
+  CHECK(p.gradient_exponent == 1);
+  CHECK(p.gradient_scale == 1.0f);
+  CHECK(p.gradient_abs == 0);  // signed delta, Eq. 12
   CHECK(rtdr::set_param(p, "gradient_levels", 3.0));
   CHECK(p.gradient_levels == 3);
   CHECK_FALSE(rtdr::set_param(p, "alpha", 0.5));  // SVGF's row, not this table's

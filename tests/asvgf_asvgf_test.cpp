@@ -5,6 +5,7 @@
 #include "filters/method.h"
 
 #include "core/color.h"
+#include "core/error.h"
 #include "filters/image.h"
 #include "scenes/gltf_loader.h"
 #include "trace/gradients.h"
@@ -22,8 +23,9 @@ namespace {
 constexpr int kWidth = 48, kHeight = 27;
 
 // Frames 0..last of `scene` with gradient samples, each filtered by asvgf with its dump; the dumps are returned.
-std::vector<Frame> asvgf_dumps(const Scene& scene, int last, std::vector<Frame>* inputs = nullptr) {
-  const std::unique_ptr<Method> asvgf = make_method("asvgf");
+std::vector<Frame> asvgf_dumps(const Scene& scene, int last, std::vector<Frame>* inputs = nullptr,
+                               const MethodParams& params = method_defaults("asvgf")) {
+  const std::unique_ptr<Method> asvgf = make_method("asvgf", params);
   std::vector<Frame> frames, dumps;
   for (int f = 0; f <= last; ++f) {
     frames.push_back(render_frame_with_gradients(scene, f, kWidth, kHeight, {}, {}, f ? &frames.back() : nullptr));
@@ -103,10 +105,21 @@ TEST_CASE("asvgf: emitters switching on from 0 give lambda = 1, and the temporal
     CHECK(d.float_channel("filter.direct.lambda").data[i] == 1.0f);
     CHECK(alpha.data[i] == 1.0f);
     CHECK(length.data[i] == 1.0f);  // the dropped history restarts (history_rule 0)
+    CHECK(d.float_channel("filter.direct.variance.spatial").data[i] == 1.0f);  // so the variance is spatial
     CHECK(temporal.data[i] == noisy.data[i]);
   }
   INFO(reached << " pixels reached");
   CHECK(reached > kWidth * kHeight / 3);
+  // history_rule 1 keeps SVGF's count: the dump shows n = 3 there at frame 2, the history not restarted.
+  MethodParams keep = method_defaults("asvgf");
+  keep.asvgf.history_rule = 1;
+  const Frame kept = asvgf_dumps(switched_cornell(0.0f, 1.0f), 2, nullptr, keep)[2];
+  int counted = 0;
+  for (size_t i = 0; i < norm.data.size(); ++i) {
+    if (norm.data[i] <= 0.0f || mesh.data[i] == kInvalidId) continue;
+    counted += kept.float_channel("filter.direct.history_length").data[i] == 3.0f;
+  }
+  CHECK(counted > reached / 2);  // all but the pixels whose history was disoccluded
 }
 
 TEST_CASE("a-eaw is EAW followed by the adaptive EMA: on a static scene frame 1 is the mean of EAW's frames 0 and 1") {
@@ -138,4 +151,46 @@ TEST_CASE("a-eaw is EAW followed by the adaptive EMA: on a static scene frame 1 
     }
   }
   CHECK(covered > kWidth * kHeight);
+}
+
+TEST_CASE("A-SVGF's passes are logged where they run: each probe re-computes its dumped value, on every stream") {
+  // pillars moves, so delta != 0 somewhere; the passes are probed at covered pixels of frame 2, for the two streams
+  // and for the one stream "combined" (streams = 1), every reconstruction iteration included.
+  const Scene scene = load_scene("pillars");
+  std::vector<Frame> frames;
+  for (int f = 0; f <= 2; ++f)
+    frames.push_back(render_frame_with_gradients(scene, f, kWidth, kHeight, {}, {}, f ? &frames.back() : nullptr));
+  for (const int streams : {2, 1}) {
+    MethodParams params = method_defaults("asvgf");
+    params.svgf.streams = streams;
+    const std::unique_ptr<Method> asvgf = make_method("asvgf", params);
+    Frame dump(kWidth, kHeight);
+    for (const Frame& frame : frames) asvgf->filter(frame, &dump);
+    const std::vector<std::string> names =
+        streams == 2 ? std::vector<std::string>{"direct", "indirect"} : std::vector<std::string>{"combined"};
+    const UIntPlane& mesh = frames.back().uint_channel("id.mesh");
+    for (const std::string& s : names)
+      for (const auto& [x, y] : {std::pair{24, 13}, std::pair{10, 20}, std::pair{40, 5}}) {
+        INFO("stream " << s << ", pixel (" << x << ", " << y << ")");
+        REQUIRE(mesh.at(x, y) != kInvalidId);
+        const auto dumped = [&](const std::string& layer) { return dump.float_channel("filter." + s + "." + layer).at(x, y); };
+        const Probe gradient = asvgf->probe("gradient", x, y, s, 0);
+        CHECK(gradient.find("delta").value[0] == Approx(dumped("gradient.delta")).margin(1e-7));
+        CHECK(gradient.find("Delta").value[0] == Approx(dumped("gradient.norm")).margin(1e-7));
+        CHECK(gradient.find("l^(0)").value[0] == Approx(dumped("gradient.luminance")).margin(1e-7));
+        for (int k = 0; k < params.asvgf.gradient_levels; ++k) {
+          INFO("iteration " << k);
+          const Probe level = asvgf->probe("gradient_atrous", x, y, s, k);
+          const std::string prefix = "gradient.level" + std::to_string(k) + ".";
+          CHECK(level.find("delta^(k+1)(p)", "sum").value[0] == Approx(dumped(prefix + "delta")).margin(1e-7));
+          CHECK(level.find("l^(k+1)(p)", "sum").value[0] == Approx(dumped(prefix + "luminance")).margin(1e-7));
+        }
+        const Probe alpha = asvgf->probe("adaptive_alpha", x, y, s, 0);
+        CHECK(alpha.find("lambda(p)").value[0] == Approx(dumped("lambda")).margin(1e-7));
+        CHECK(alpha.find("alpha_i").value[0] == Approx(dumped("alpha")).margin(1e-7));
+      }
+    // A stream that did not run is refused, naming those that did.
+    if (streams == 1) CHECK_THROWS_WITH(asvgf->probe("adaptive_alpha", 24, 13, "direct", 0), Catch::Contains("combined"));
+    CHECK_THROWS_AS(asvgf->probe("gradient_atrous", 24, 13, names.front(), params.asvgf.gradient_levels), Error);
+  }
 }

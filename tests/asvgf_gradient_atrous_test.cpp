@@ -4,6 +4,7 @@
 #include "filters/asvgf/gradient_atrous.h"
 
 #include "filters/asvgf/adaptive_alpha.h"
+#include "filters/asvgf/asvgf.h"
 
 #include "asvgf_fixtures.h"
 
@@ -83,3 +84,89 @@ TEST_CASE("reconstruction: constant values on a plane stay constant, and a spike
   CHECK(nonzero == 9);
 }
 
+
+namespace {
+
+// One reconstruction iteration (k = 0) and lambda per stratum for a 9x9-stratum plane whose strata hold the
+// gradient samples `samples` ((stratum, f_now, f_before) each; the others none), made into values by the asvgf
+// parameters' GradientForm, and lambda formed as the adaptive_alpha pass forms it (asvgf.h).
+struct Sample {
+  glm::ivec2 stratum;
+  float f_now, f_before;
+};
+FloatPlane variant_lambda(const std::vector<Sample>& samples, const AsvgfParams& asvgf) {
+  GradientImage g = flat_grid(9, 9);
+  for (const Sample& s : samples) {
+    const glm::vec2 v = gradient_sample_values(s.f_now, s.f_before, gradient_form(asvgf));
+    g.values.delta.at(s.stratum.x, s.stratum.y) = v.x;
+    g.values.norm.at(s.stratum.x, s.stratum.y) = v.y;
+  }
+  const GradientValues once = reconstruct(g, 1);
+  return adaptive_alpha_pass(once, 3, 27, 27, adaptive_alpha_params(SvgfParams{}, asvgf)).lambda;
+}
+
+AsvgfParams variant(int normalize, int exponent = 1, float scale = 1.0f, int absolute = 0) {
+  AsvgfParams p;
+  p.gradient_normalize = normalize;
+  p.gradient_exponent = exponent;
+  p.gradient_scale = scale;
+  p.gradient_abs = absolute;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("variants: one bright changed sample among dim unchanged ones, normalised after (Eq. 14) or before") {
+  // Stratum (4, 4) is a bright sample that halved, 2 -> 1: delta = -1, Delta = 2, its own ratio r = 1/2. Its eight
+  // neighbours are dim and unchanged, 0.1 -> 0.1: delta = 0, Delta = 0.1, r = 0. One iteration on a plane of
+  // constant luminance weights each of the 3x3 taps with h w = 1/9 (w_z = w_n = w_l = 1), so at (4, 4):
+  const glm::ivec2 c(4, 4);
+  std::vector<Sample> samples{{c, 1.0f, 2.0f}};
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (dx != 0 || dy != 0) samples.push_back({c + glm::ivec2(dx, dy), 0.1f, 0.1f});
+  // after (the paper): delta^ = -1/9, Delta^ = (2 + 8 0.1) / 9, lambda = 1 / 2.8: delta_b / (Delta_b + sum of the
+  // dim Delta). The dim samples dilute the change by their brightness.
+  CHECK(variant_lambda(samples, variant(0)).at(c.x, c.y) == Approx(1.0 / 2.8).epsilon(1e-6));
+  // ... with Q2RTX's square after: (1 / 2.8)^2; with RTGL1's k = 0.1: 0.1 / 2.8.
+  CHECK(variant_lambda(samples, variant(0, 2)).at(c.x, c.y) == Approx(1.0 / (2.8 * 2.8)).epsilon(1e-6));
+  CHECK(variant_lambda(samples, variant(0, 1, 0.1f)).at(c.x, c.y) == Approx(0.1 / 2.8).epsilon(1e-6));
+  // before: delta^ = r_b / 9 = 0.5 / 9 and the present weights' Delta^ = 9 / 9, so lambda = (1/9) 0.5: the bright
+  // sample's share of the filter weight (1 of 9 samples in reach) times its own ratio.
+  CHECK(variant_lambda(samples, variant(1)).at(c.x, c.y) == Approx(0.5 / 9.0).epsilon(1e-6));
+  // ... squared per sample (Q2RTX): (1/9) 0.25; scaled per sample (RTGL1): (1/9) 0.1 0.5. p and k are not applied
+  // a second time after the reconstruction.
+  CHECK(variant_lambda(samples, variant(1, 2)).at(c.x, c.y) == Approx(0.25 / 9.0).epsilon(1e-6));
+  CHECK(variant_lambda(samples, variant(1, 1, 0.1f)).at(c.x, c.y) == Approx(0.05 / 9.0).epsilon(1e-6));
+
+  // Without the dim samples (empty strata, 0 and 0) the density cancels in both quotients [ASVGF18 Sec. 3.5]: the
+  // bright sample is all there is in reach, and lambda is its own ratio, 1/2, either way. (Q2RTX filters no
+  // sample-present weight: its lambda would stay at 0.5 / 9, diluted by the empty strata.)
+  const std::vector<Sample> alone{samples.front()};
+  CHECK(variant_lambda(alone, variant(0)).at(c.x, c.y) == Approx(0.5).epsilon(1e-6));
+  CHECK(variant_lambda(alone, variant(1)).at(c.x, c.y) == Approx(0.5).epsilon(1e-6));
+  // Three of the nine strata with samples (the bright one and two dim): before gives 0.5 / 3.
+  const std::vector<Sample> three{samples[0], samples[1], samples[2]};
+  CHECK(variant_lambda(three, variant(1)).at(c.x, c.y) == Approx(0.5 / 3.0).epsilon(1e-6));
+  // Beyond every sample's reach lambda is 0 in all forms (stratum (0, 8) is 4 strata from (4, 4)).
+  for (const AsvgfParams& p : {variant(0), variant(1), variant(0, 2), variant(0, 1, 1.0f, 1)})
+    CHECK(variant_lambda(samples, p).at(0, 8) == 0.0f);
+}
+
+TEST_CASE("variants: opposite changes cancel in the signed reconstruction, not in the unsigned one") {
+  // A shadow edge moving right: stratum (4, 4) darkens 2 -> 1 (delta = -1, Delta = 2), (5, 4) brightens 1 -> 2
+  // (delta = +1, Delta = 2); the seven other strata of (4, 4)'s 3x3 are dim and unchanged (Delta = 0.1).
+  const glm::ivec2 c(4, 4);
+  std::vector<Sample> samples{{c, 1.0f, 2.0f}, {c + glm::ivec2(1, 0), 2.0f, 1.0f}};
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 0; ++dx)
+      if (dx != 0 || dy != 0) samples.push_back({c + glm::ivec2(dx, dy), 0.1f, 0.1f});
+  for (int dy : {-1, 1}) samples.push_back({c + glm::ivec2(1, dy), 0.1f, 0.1f});
+  REQUIRE(samples.size() == 9);
+  // Signed (Eq. 12): delta^ = (-1 + 1) / 9 = 0, lambda = 0 although half the light moved.
+  CHECK(variant_lambda(samples, variant(0)).at(c.x, c.y) == 0.0f);
+  // abs(delta): delta^ = (1 + 1) / 9, Delta^ = (2 + 2 + 7 0.1) / 9, lambda = 2 / 4.7.
+  CHECK(variant_lambda(samples, variant(0, 1, 1.0f, 1)).at(c.x, c.y) == Approx(2.0 / 4.7).epsilon(1e-6));
+  // Per sample (before) the ratios are unsigned as well: (0.5 + 0.5) / 9.
+  CHECK(variant_lambda(samples, variant(1)).at(c.x, c.y) == Approx(1.0 / 9.0).epsilon(1e-6));
+}

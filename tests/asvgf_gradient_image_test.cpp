@@ -87,3 +87,47 @@ TEST_CASE("gradient image: two samples in one stratum, or planes of another size
   CHECK_THROWS_AS(gradient_image(other.noisy, other.source, other.prev, other.surface, 3), Error);
   CHECK_THROWS_AS(gradient_image(other.noisy, other.source, Input().prev, other.surface, 0), Error);
 }
+
+TEST_CASE("gradient image variants: abs(delta), or the sample's ratio beside a sample-present weight, and the probe names them") {
+  Input in;
+  // The sample of the test above: now l = 12, before 20: delta = -8, Delta = 20, ratio 8/20 = 0.4.
+  in.source.at(2, 1) = 3u;
+  in.prev.at(2, 1) = 20.0f;
+  const auto stratum = [&](const GradientForm& form, Probe* probe = nullptr) {
+    return gradient_stratum(in.noisy, in.source, in.prev, in.surface, 3, 0, 0, form, probe);
+  };
+  const GradientStratum paper = stratum({});
+  CHECK(paper.delta == -8.0f);
+  CHECK(paper.norm == 20.0f);
+  const GradientStratum absolute = stratum({.absolute = true});
+  CHECK(absolute.delta == 8.0f);  // opposite changes can no longer cancel
+  CHECK(absolute.norm == 20.0f);
+  // Normalised before the reconstruction: r = min(1, k (8/20)^p), and the sample-present weight 1 as Delta.
+  CHECK(stratum({.before = true}).delta == Approx(0.4f).epsilon(1e-6));
+  CHECK(stratum({.before = true}).norm == 1.0f);
+  CHECK(stratum({.before = true, .exponent = 2}).delta == Approx(0.16f).epsilon(1e-6));            // Q2RTX
+  CHECK(stratum({.before = true, .scale = 0.1f}).delta == Approx(0.04f).epsilon(1e-6));            // RTGL1
+  CHECK(stratum({.before = true, .absolute = true}).delta == Approx(0.4f).epsilon(1e-6));          // r is unsigned
+  CHECK(gradient_sample_values(3.0f, 0.0f, {.before = true, .scale = 0.5f}).x == 0.5f);           // k r
+  CHECK(gradient_sample_values(9.0f, 0.0f, {.before = true}).x == 1.0f);                          // min(1, .)
+  CHECK(gradient_sample_values(0.0f, 0.0f, {.before = true}) == glm::vec2(0.0f, 1.0f));  // black both: r 0, present
+  // Mean and variance do not depend on the form.
+  CHECK(stratum({.before = true}).luminance == paper.luminance);
+  CHECK(stratum({.before = true}).variance == paper.variance);
+  // Strata without a sample hold (0, 0) in every form: they stay in the sums, so the density cancels.
+  const GradientImage g = gradient_image(in.noisy, in.source, in.prev, in.surface, 3, {.before = true});
+  CHECK(g.values.delta.at(1, 0) == 0.0f);
+  CHECK(g.values.norm.at(1, 0) == 0.0f);
+  CHECK(g.values.delta.at(0, 0) == Approx(0.4f).epsilon(1e-6));
+  // The probe records both luminances, the raw delta and Delta, and what the form made of them.
+  Probe probe;
+  stratum({.before = true, .exponent = 2}, &probe);
+  CHECK(probe.find("f_i - f_{i-1}").value.front() == -8.0f);
+  CHECK(probe.find("max(f_i, f_{i-1})").value.front() == 20.0f);
+  CHECK(probe.find("r (the sample's ratio)").value.front() == Approx(0.16f).epsilon(1e-6));
+  CHECK(probe.find("sample-present weight").value.front() == 1.0f);
+  Probe signed_probe;
+  stratum({}, &signed_probe);
+  CHECK(signed_probe.find("delta").value.front() == -8.0f);
+  CHECK(signed_probe.find("Delta").value.front() == 20.0f);
+}

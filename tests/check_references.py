@@ -20,10 +20,13 @@ repository, and checks four kinds of reference:
      subcommand named before it on the same line (`rtdr probe ... --json`) when there is one, else of any.
      A flag that follows another program's name on its line (FOREIGN_PROGRAMS: `ctest --output-on-failure`)
      is that program's and is not checked; one that follows a script of ours as it is run (`bash
-     tools/fuzz.sh --runs=N`) must appear in that script, and so must a flag in a script's own comments.
+     tools/fuzz.sh --runs=N`, or by its path, `tools/reproduce.py --check`) must appear in that script, and so
+     must a flag in a script's own comments.
      A placeholder is a wildcard: `--<name>` matches any flag.
   4. Things outside the repository: issue numbers ("issue 6", "issue #12"), the team's notes (TOOLCHAIN.md,
      DESIGN.md, STYLE.md), ../shared and seeds/. A reader of the repository has none of them.
+  5. One claim, that docs/architecture.md lists every port: each shader of the repository (*.comp) is named
+     there, so a new port cannot be missing from its list of which passes have ports.
 
 To keep false findings rare, only words that start with a folder of the repository are read as paths (so
 out/demo/ and build/app/rtdr are not), and a bare `n.h` or `wo.h` (one or two letters) is a dot product with
@@ -458,10 +461,12 @@ def rtdr_flags(rtdr):
 
 def command_pattern(flags, scripts):
     """Matches the name of a command: `rtdr` with its subcommand (group 1), another program (group 2), or a
-    script of ours where it is run, after bash or python3 (group 3)."""
+    script of ours where it is run: after bash or python3 (group 3), or one of tools/ by its path (group 4)."""
     alternatives = lambda names: "|".join(re.escape(n) for n in sorted(names, key=len, reverse=True))
-    return re.compile(r"(?<![\w\-])(?:rtdr(?:\s+(%s))?|(%s)|(?:(?<=bash )|(?<=python3 ))(%s))(?![\w\-])" % (
-        alternatives(s for s in flags if s), alternatives(FOREIGN_PROGRAMS), alternatives(scripts)))
+    by_path = [name for name in scripts if name.startswith("tools/")]
+    return re.compile(r"(?<![\w\-])(?:rtdr(?:\s+(%s))?|(%s)|(?:(?<=bash )|(?<=python3 ))(%s)|(?<![\w./\-])(%s))"
+                      r"(?![\w\-])" % (alternatives(s for s in flags if s), alternatives(FOREIGN_PROGRAMS),
+                                       alternatives(scripts), alternatives(by_path)))
 
 
 def check_flags(repo, path, text, flags, scripts, command):
@@ -474,7 +479,7 @@ def check_flags(repo, path, text, flags, scripts, command):
         if last and last.group(2):
             continue  # another program's flag
         if last:
-            script = scripts[last.group(3)] if last.group(3) else None
+            script = scripts[last.group(3) or last.group(4)] if last.group(3) or last.group(4) else None
         else:
             script = path if path in scripts else None
         if script:
@@ -521,6 +526,19 @@ def check_outside(repo, path, text):
             repo.find(path, text.line_of(match.start()), f"'{match.group(0)}' {what}")
 
 
+# ---- 5. Every port in the architecture's list -------------------------------------------------------------
+
+def check_ports_listed(repo):
+    architecture = "docs/architecture.md"
+    if architecture not in repo.files:
+        return
+    text = repo.read(architecture)
+    for shader in sorted(f for f in repo.files if f.endswith(".comp")):
+        name = shader.rsplit("/", 1)[-1]
+        if not re.search(r"(?<![\w.-])" + re.escape(name) + r"(?![\w-])", text):
+            repo.find(architecture, 1, f"does not name the port {shader} among the passes that have ports")
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -542,6 +560,7 @@ def main():
             check_sections(repo, path, text)
             check_flags(repo, path, text, flags, scripts, command)
             check_outside(repo, path, text)
+    check_ports_listed(repo)
     for path, line, what in sorted(set(repo.findings)):
         print(f"{path}:{line}: {what}")
     if repo.findings:

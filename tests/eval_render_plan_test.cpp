@@ -103,11 +103,13 @@ TEST_CASE("a plan lists exactly the frames the cache lost or holds invalid, and 
   const Scene scene = load_scene("pillars");
   const FrameCache lookup(fs::absolute(cache).string(), scene);
   const EvalRenders renders = eval_renders(c, {make_method("asvgf", MethodParams{}).get()});
-  REQUIRE(renders.gradient_inputs.size() == 1);
+  REQUIRE(renders.inputs.size() == 1);
+  REQUIRE(renders.inputs[0].gradient.has_value());
+  REQUIRE(renders.references.size() == 1);
   const auto input = [&](int f) {
-    return lookup.path(render_key(scene, f, 32, 18, renders.input, &renders.gradient_inputs[0]));
+    return lookup.path(render_key(scene, f, 32, 18, renders.inputs[0].settings, &*renders.inputs[0].gradient));
   };
-  const std::string reference = lookup.path(render_key(scene, 4, 32, 18, renders.reference));
+  const std::string reference = lookup.path(render_key(scene, 4, 32, 18, renders.references[0]));
   fs::remove(input(3));  // a hole in the gradient sequence: frame 3 from the cached frame 2, 4 kept
   std::ofstream(reference, std::ios::trunc) << "not a frame";  // an invalid entry is rendered again
   const std::vector<RenderJob> jobs = plan_renders(c, kRtdr);
@@ -202,4 +204,18 @@ TEST_CASE("a plan is refused where the run would be, and without a cache") {
   c.scene = (dir / "missing.gltf").string();
   CHECK_THROWS_AS(plan_renders(c, kRtdr), Error);
   CHECK_FALSE(fs::exists(dir / "cache"));  // nothing made
+}
+
+TEST_CASE("a spec's own max_bounces adds its inputs and its references to the plan, exactly as the run renders them") {
+  const fs::path cache = cli::scratch("rtdr_render_plan_test", "bounces") / "cache";
+  EvalConfig c = small_run(cache);
+  c.methods = {parse_method_spec("svgf"), parse_method_spec("svgf:max_bounces=0")};
+  c.last_frame = 3;
+  const std::vector<RenderJob> jobs = plan_renders(c, kRtdr);
+  // Frames 2 and 3 of the references and of the inputs, each with 1 bounce (the run's) and with 0: one job each.
+  REQUIRE(jobs.size() == 8);
+  std::map<std::string, int> per_bounces;
+  for (const RenderJob& j : jobs) ++per_bounces[j.what + " " + flag_value(j, "--max-bounces")];
+  CHECK(per_bounces == std::map<std::string, int>{{"input 0", 2}, {"input 1", 2}, {"reference 0", 2}, {"reference 1", 2}});
+  CHECK(stored_by_run(c) == planned(jobs));
 }

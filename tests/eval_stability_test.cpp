@@ -1,7 +1,10 @@
 // The stability suite (ctest label `stability`): what the papers claim about where methods fail, measured
 // with the evaluation harness (eval/experiment.h) at sizes small enough for CI. Thresholds come from
-// measured runs, with margin; the measured values are written beside each check, so later methods
-// (A-SVGF, reliable motion vectors) can be judged on the same tests.
+// measured runs, with margin. Every claim prints what it measured, one line each,
+//   stability: <claim>: <value> (threshold <t>)
+// and every other number the READMEs quote from these runs without a threshold; `tools/reproduce.py stability`
+// runs `ctest -L stability -V` and writes those lines into the stability tables of filters/svgf/README.md,
+// filters/asvgf/README.md and filters/trmv/README.md, so the READMEs' numbers come from the run that asserts them.
 #include "core/color.h"
 #include "eval/experiment.h"
 #include "eval/metrics.h"
@@ -14,10 +17,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 
 namespace {
+
+// One measured claim on stdout: "stability: <claim>: <value> (threshold <threshold>)", or a measured value alone
+// where `threshold` is empty (tools/reproduce.py reads both).
+void report(const std::string& claim, double value, const std::string& threshold = "") {
+  std::printf("stability: %s: %.4g%s\n", claim.c_str(), value,
+              threshold.empty() ? "" : (" (threshold " + threshold + ")").c_str());
+  std::fflush(stdout);
+}
+
+// "%.4g" of a value, for a threshold that names a measured value ("< svgf's 5").
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
 
 // One evaluation run, metrics by method: per frame, in frame order.
 struct Series {
@@ -90,11 +109,13 @@ TEST_CASE("static: after convergence SVGF's temporal error is far below the inpu
   const double eaw = mean(s.at("eaw").temporal_error, 10, 20);
   const double none = mean(s.at("none").temporal_error, 10, 20);
   INFO("temporal error, frames 10-19: svgf " << svgf << ", eaw " << eaw << ", none " << none);
-  // Measured at 96x54, 2026-11-23: svgf 0.000182, eaw 0.00148, none 0.0397 (svgf/none = 0.0046,
-  // svgf/eaw = 0.123). SVGF Fig. 10 shows the same order: the unfiltered input far above, EAW above SVGF
-  // only by its lack of temporal reuse (our EAW keeps TAA, which already cuts its flicker). Before the TAA
-  // clip's box was padded by 1/1024 (filters/taa/taa_shared.h): svgf 0.000228, eaw 0.00232; the bare box
-  // pulled towards the mean histories that the padded one keeps (to the mean itself where the box is flat).
+  report("static: temporal error of svgf, frames 10-19", svgf);
+  report("static: temporal error of eaw, frames 10-19", eaw);
+  report("static: temporal error of the input (none), frames 10-19", none);
+  report("static: svgf's temporal error / the input's", svgf / none, "< 0.05");
+  report("static: svgf's temporal error / eaw's", svgf / eaw, "< 0.5");
+  // SVGF Fig. 10 shows the same order: the unfiltered input far above, EAW above SVGF only by its lack of
+  // temporal reuse (our EAW keeps TAA, which already cuts its flicker).
   CHECK(svgf < 0.05 * none);
   CHECK(svgf < 0.5 * eaw);
 }
@@ -111,16 +132,19 @@ TEST_CASE("pillars and fence: temporal reuse gains far less where shadows move t
     for (const char* method : {"accum", "svgf"}) {
       gain[scene][method] = mean(s.at(method).rmse, 12, 24) / mean(s.at("none").rmse, 12, 24);
       INFO(scene << " " << method << ": late RMSE / input's " << gain[scene][method]);
+      report(std::string("pillars and fence: ") + scene + ", " + method + "'s RMSE / the input's, frames 12-23",
+             gain[scene][method], "< 1");
       CHECK(gain[scene][method] < 1.0);  // filtering still helps everywhere
     }
   }
   INFO("accum: pillars " << gain["pillars"]["accum"] << ", fence " << gain["fence"]["accum"] << ", static "
                          << gain["static"]["accum"] << "; svgf: pillars " << gain["pillars"]["svgf"] << ", fence "
                          << gain["fence"]["svgf"] << ", static " << gain["static"]["svgf"]);
-  // Measured at 96x54 with 16-spp references, 2026-11-23 (late RMSE / the input's):
-  //   accum: pillars 0.495, fence 0.503, static 0.374 (moving / still = 1.32 and 1.34)
-  //   svgf:  pillars 0.500, fence 0.517, static 0.272 (moving / still = 1.84 and 1.90)
   for (const char* scene : {"pillars", "fence"}) {
+    report(std::string("pillars and fence: accum's RMSE / the input's, ") + scene + " / static",
+           gain[scene]["accum"] / gain["static"]["accum"], "> 1.15");
+    report(std::string("pillars and fence: svgf's RMSE / the input's, ") + scene + " / static",
+           gain[scene]["svgf"] / gain["static"]["svgf"], "> 1.5");
     CHECK(gain[scene]["accum"] > 1.15 * gain["static"]["accum"]);
     CHECK(gain[scene]["svgf"] > 1.5 * gain["static"]["svgf"]);
   }
@@ -143,10 +167,13 @@ TEST_CASE("flicker: after the blue light switches on (frame 30), temporal method
                     << " frames");
     CHECK(lag[method] >= 0);  // every method recovers within the 12 frames after the switch
   }
-  // Measured at 96x54 with 16-spp references, 2026-11-23 (brightness error at the switch, lag):
-  //   accum 0.056, 5 frames (from 0.0001 the frame before; then 0.041, 0.035, 0.028, 0.022, 0.019)
-  //   svgf  0.066, 8 frames (from 0.014: its spatial filter adds a little bias of its own)
-  //   none  0.0035, 0 frames (no history: only noise)
+  report("flicker: brightness error at the switch, accum", at_switch["accum"], "> 0.03");
+  report("flicker: brightness error at the switch, svgf", at_switch["svgf"]);
+  report("flicker: brightness error at the switch, the input (none)", at_switch["none"], "< 0.02");
+  report("flicker: frames until accum's brightness error is under 2 %", lag["accum"], ">= 3");
+  report("flicker: frames until svgf's brightness error is under 2 %", lag["svgf"], ">= 4");
+  report("flicker: frames until the input's brightness error is under 2 %", lag["none"], "= 0");
+  // svgf's brightness error before the switch is above accum's: its spatial filter adds a little bias of its own.
   CHECK(at_switch["accum"] > 0.03);
   CHECK(at_switch["none"] < 0.02);
   CHECK(lag["accum"] >= 3);
@@ -176,11 +203,18 @@ TEST_CASE("asvgf: on flicker it catches up after the switch sooner than svgf, on
     INFO("light_cdf " << light_cdf << ": brightness error at the switch svgf " << at_switch[light_cdf]["svgf"]
                       << ", asvgf " << at_switch[light_cdf]["asvgf"] << "; lag svgf " << lag[light_cdf]["svgf"]
                       << ", asvgf " << lag[light_cdf]["asvgf"] << " frames");
+    const std::string on = "asvgf on flicker, light_cdf " + std::to_string(light_cdf) + ": ";
+    report(on + "brightness error at the switch, svgf", at_switch[light_cdf]["svgf"]);
+    report(on + "brightness error at the switch, asvgf", at_switch[light_cdf]["asvgf"]);
+    report(on + "brightness error at the switch, asvgf / svgf",
+           at_switch[light_cdf]["asvgf"] / at_switch[light_cdf]["svgf"], "< 0.95");
+    report(on + "frames until svgf is back to its level before the switch", lag[light_cdf]["svgf"]);
     CHECK(at_switch[light_cdf]["asvgf"] < 0.95 * at_switch[light_cdf]["svgf"]);
   }
-  // Measured at 96x54 with 16-spp references, 2026-11-24 (brightness error at the switch; lag):
-  //   light_cdf 0: svgf 0.066, 4 frames; asvgf 0.050, 3 frames
-  //   light_cdf 1: svgf 0.067, 4 frames; asvgf 0.060, 5 frames
+  report("asvgf on flicker, light_cdf 0: frames until asvgf is back to its level before the switch", lag[0]["asvgf"],
+         "< svgf's " + short_number(lag[0]["svgf"]));
+  report("asvgf on flicker, light_cdf 1: frames until asvgf is back to its level before the switch", lag[1]["asvgf"],
+         "> light_cdf 0's " + short_number(lag[0]["asvgf"]));
   // The blue light is one of four, so lambda is only its share of a pixel's light and the history is only partly
   // dropped: the paper's lag of at most 2 frames on DUNGEON is not reached. With light_cdf 1 a re-shaded sample
   // chooses lights by the powers of its seed's frame, in which the blue light was off: its next-event estimation
@@ -197,8 +231,11 @@ TEST_CASE("asvgf: on flicker it catches up after the switch sooner than svgf, on
   const double a_eaw = mean(still.at("a-eaw").temporal_error, 10, 20);
   INFO("static, temporal error of frames 10-19: svgf " << svgf << ", asvgf " << asvgf << ", eaw " << eaw
                                                        << ", a-eaw " << a_eaw);
-  // Measured at 96x54, 2026-11-24: svgf 0.000191, asvgf 0.000161, eaw 0.00143, a-eaw 0.000201 [ASVGF18 Fig. 6:
-  // A-SVGF at or below SVGF; A-RAE far steadier than RAE after the first frames].
+  report("asvgf on static: temporal error of svgf, frames 10-19", svgf);
+  report("asvgf on static: temporal error of eaw, frames 10-19", eaw);
+  report("asvgf on static: temporal error of asvgf / svgf's", asvgf / svgf, "<= 1");
+  report("asvgf on static: temporal error of a-eaw / eaw's", a_eaw / eaw, "< 0.25");
+  // [ASVGF18 Fig. 6: A-SVGF at or below SVGF; A-RAE far steadier than RAE after the first frames.]
   CHECK(asvgf <= svgf);
   CHECK(a_eaw < 0.25 * eaw);
 }
@@ -240,11 +277,14 @@ TEST_CASE("falling-light: where the lamp's light left asvgf drops the old light 
     measured << m << ": where the light left " << left[m] << ", where it arrived " << arrived[m] << ", image "
              << image[m] << "; ";
   INFO("signed brightness error, mean of frames 38-45: " << measured.str());
-  // Measured at 96x54 with 16-spp references, 2026-11-24 (where the light left; where it arrived; the image's):
-  //   svgf  +0.775; -0.348; 0.078
-  //   asvgf +0.107; -0.386; 0.223
-  //   accum +0.926; -0.203; 0.052
-  //   none  +0.057; -0.023; 0.018
+  for (const std::string& m : methods) {
+    const std::string what = "falling-light: " + m + "'s signed brightness error, frames 38-45, ";
+    report(what + "where the light left", left[m], m == "svgf" ? "> 0.3" : m == "none" ? "abs < 0.15" : "");
+    report(what + "where it arrived", arrived[m], m == "none" ? "abs < 0.1" : "< -0.1");
+    report(what + "the image's", image[m]);
+  }
+  report("falling-light: where the light left, asvgf's error / svgf's", left["asvgf"] / left["svgf"], "< 0.5");
+  report("falling-light: svgf's error, the image's / where the light left", image["svgf"] / left["svgf"], "< 0.5");
   // The regions themselves do not bias the measure: the 1-spp input (none) is within a few per cent in both.
   CHECK(std::abs(left["none"]) < 0.15);
   CHECK(std::abs(arrived["none"]) < 0.1);
@@ -284,11 +324,13 @@ TEST_CASE("fence: trmv along the shadow motion errs less in the moving shadows t
        << umbra["trmv:motion=traditional:clamp_gamma=0"] << ", shadow without clamp "
        << umbra["trmv:motion=shadow:clamp_gamma=0"] << ", trmv (all vectors) " << umbra["trmv"] << ", svgf "
        << umbra["svgf"] << ", asvgf " << umbra["asvgf"]);
-  // Measured at 160x90 with 16-spp references and gradient-sampled input, 2026-11-26 (umbra RMSE, frames 4-15):
-  // the shadow vector alone 0.2599 against the traditional vector's 0.2616 with the clamp; 0.2575 against 0.2588
-  // without it; trmv with all its vectors 0.2599 (the dual and glossy vectors hardly touch the umbrae); svgf 0.2268,
-  // asvgf 0.2229 (filters/trmv/README.md says why their blur wins this measure). The order of the vectors is the
-  // paper's; the margins, under 1 %, are what we measure.
+  for (const auto& [spec, value] : umbra) report("fence: umbra RMSE of " + spec + ", frames 4-15", value);
+  report("fence: umbra RMSE along the shadow motion / along the surface motion, with the clamp",
+         umbra["trmv:motion=shadow"] / umbra["trmv:motion=traditional"], "< 1");
+  report("fence: umbra RMSE along the shadow motion / along the surface motion, without the clamp",
+         umbra["trmv:motion=shadow:clamp_gamma=0"] / umbra["trmv:motion=traditional:clamp_gamma=0"], "< 1");
+  // The order of the vectors is the paper's; the dual and glossy vectors hardly touch the umbrae, and svgf's and
+  // asvgf's blur wins this measure (filters/trmv/README.md says why).
   CHECK(umbra["trmv:motion=shadow"] < umbra["trmv:motion=traditional"]);
   CHECK(umbra["trmv:motion=shadow:clamp_gamma=0"] < umbra["trmv:motion=traditional:clamp_gamma=0"]);
 }
@@ -374,16 +416,22 @@ TEST_CASE("occlusion: trmv along the dual motion errs less in the disoccluded ba
        << rmse.at("trmv:motion=dual:cones=0") << ", traditional " << rmse.at("trmv:motion=traditional") << ", trmv "
        << rmse.at("trmv") << ", svgf " << rmse.at("svgf") << ", svgf with one a-trous level "
        << rmse.at("svgf:atrous_levels=1"));
-  // Measured at 160x90, frames 38-45, 2026-11-26 (298 band pixels a frame): dual 0.3242, dual without cones
-  // 0.3120, traditional 0.3349, trmv 0.3242, svgf 0.3061, svgf with one a-trous level 0.4007.
-  // - The paper's order of the vectors holds: the dual vector errs 3 % less than the surface vector, 7 % without
-  //   the cones.
+  report("occlusion: disoccluded band, pixels a frame", double(band_pixels / band.size()));
+  for (const auto& [spec, value] : rmse)
+    report("occlusion: band RMSE of " + spec + ", frames " + std::to_string(first + band_frames) + "-45", value);
+  report("occlusion: band RMSE along the dual motion / along the surface motion",
+         rmse.at("trmv:motion=dual") / rmse.at("trmv:motion=traditional"), "< 1");
+  report("occlusion: band RMSE along the dual motion without the cones / along the surface motion",
+         rmse.at("trmv:motion=dual:cones=0") / rmse.at("trmv:motion=traditional"), "< 1");
+  report("occlusion: band RMSE of svgf with one a-trous level / trmv along the dual motion",
+         rmse.at("svgf:atrous_levels=1") / rmse.at("trmv:motion=dual"), "> 1");
+  // - The paper's order of the vectors holds: the dual vector errs less than the surface vector.
   // - The cones do not help here: x^O lands on the same wall (same normal), where the colour already is the right
   //   history, and the cones' history is noisier (each cone sees the fraction of the one path sample that falls in
   //   it; filters/trmv/README.md).
   // - svgf errs least, unlike the paper's Fig. 12: in the band every method's history is a frame or two old, and
   //   svgf's five a-trous levels (65x65) then remove more noise than trmv's one 31x31 filter. With one level svgf
-  //   errs most (0.4007).
+  //   errs most.
   CHECK(rmse.at("trmv:motion=dual") < rmse.at("trmv:motion=traditional"));
   CHECK(rmse.at("trmv:motion=dual:cones=0") < rmse.at("trmv:motion=traditional"));
   CHECK(rmse.at("svgf:atrous_levels=1") > rmse.at("trmv:motion=dual"));
@@ -417,9 +465,12 @@ TEST_CASE("glossy: trmv along the glossy motion leaves less reflection ghosting 
        << ", traditional " << ghost.at("trmv:motion=traditional") << "; without the clamp: glossy "
        << ghost.at("trmv:motion=glossy:clamp_gamma=0") << ", traditional "
        << ghost.at("trmv:motion=traditional:clamp_gamma=0") << "; svgf " << ghost.at("svgf"));
-  // Measured at 160x90, frames 4-15, 2026-11-26: glossy 0.5595 against traditional 0.5620 (-0.45 %); without the
-  // clamp 0.5650 against 0.5709 (-1.0 %); svgf 0.5269. The paper's order holds, by little: the floor's roughness
-  // 0.15 spreads each reflection over a footprint (sqrt(trace Sigma) about 13 px at this size,
+  for (const auto& [spec, value] : ghost) report("glossy: the floor's ghosts, " + spec + ", frames 4-15", value);
+  report("glossy: the floor's ghosts along the glossy motion / along the surface motion, with the clamp",
+         ghost.at("trmv:motion=glossy") / ghost.at("trmv:motion=traditional"), "< 1");
+  report("glossy: the floor's ghosts along the glossy motion / along the surface motion, without the clamp",
+         ghost.at("trmv:motion=glossy:clamp_gamma=0") / ghost.at("trmv:motion=traditional:clamp_gamma=0"), "< 1");
+  // The paper's order holds, by little: the floor's roughness 0.15 spreads each reflection over a footprint (sqrt(trace Sigma) about 13 px at this size,
   // tests/motion_glossy_test.cpp) wider than its lag, and most of the floor's error is the highlights' blur, which
   // no vector changes (filters/trmv/README.md).
   CHECK(ghost.at("trmv:motion=glossy") < ghost.at("trmv:motion=traditional"));

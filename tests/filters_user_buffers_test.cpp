@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <cstring>
 
 using namespace rtdr;
@@ -83,4 +84,59 @@ TEST_CASE("user buffers: svgf on a frame rebuilt from one interleaved buffer equ
     CHECK(a.float_channel("color.G").data == b.float_channel("color.G").data);
     CHECK(a.float_channel("color.B").data == b.float_channel("color.B").data);
   }
+}
+
+TEST_CASE("user buffers: strides whose products overflow are refused, not wrapped (2^62, PTRDIFF_MAX, y * row)") {
+  const std::vector<float> buffer(64, 1.0f);
+  const auto refused = [](const BufferView& v, const std::string& part) {
+    INFO(part << ": pixel_stride " << v.pixel_stride << ", row_stride " << v.row_stride << ", " << v.width << "x"
+              << v.height);
+    CHECK_THROWS_WITH(float_plane(v), Catch::Contains(part));
+  };
+  constexpr std::ptrdiff_t max = PTRDIFF_MAX;
+  // 2^62 * 4 wraps to 0 in 64 bits: the default row would be 0 bytes, "no overlap", and x * pixel_stride anywhere.
+  refused({buffer.data(), 4, 1, 1, std::ptrdiff_t(1) << 62, 0}, "pixel_stride 4611686018427387904 times width 4");
+  refused({buffer.data(), 2, 1, 1, max, 0}, "pixel_stride 9223372036854775807 times width 2");
+  refused({buffer.data(), 1, 4, 1, 4, std::ptrdiff_t(1) << 62}, "row_stride 4611686018427387904 times 3 rows");
+  refused({buffer.data(), 1, 2, 1, 4, max}, "row_stride 9223372036854775807 times 1 rows, plus a row");
+  refused({buffer.data(), 2, 3, 1, max / 4, max / 2}, "PTRDIFF_MAX");
+  // Addresses that wrap: a span of 16 bytes from 8 bytes below the top of the address space.
+  const void* top = reinterpret_cast<const void*>(UINTPTR_MAX - 7);
+  refused({top, 4, 1, 1, 0, 0}, "wrap around the address space");
+  // At the limit but not past it: one pixel, whatever its strides, reads the first value only.
+  CHECK(float_plane({buffer.data(), 1, 1, 1, max, max}).at(0, 0) == 1.0f);
+  CHECK(float_plane({buffer.data(), 1, 1, 1, max, 0}).at(0, 0) == 1.0f);
+}
+
+TEST_CASE("user buffers: zero strides mean packed, and negative and short strides and sizes are refused") {
+  std::vector<float> buffer(12);
+  for (size_t i = 0; i < buffer.size(); ++i) buffer[i] = float(i);
+  const RgbPlane packed = rgb_plane({buffer.data(), 2, 2, 3, 0, 0});  // 12 bytes a pixel, 24 a row
+  CHECK(packed.at(1, 1) == glm::vec3(9.0f, 10.0f, 11.0f));
+  const auto refused = [&](const BufferView& v, const std::string& part) {
+    INFO(part);
+    CHECK_THROWS_WITH(rgb_plane(v), Catch::Contains(part));
+  };
+  refused({buffer.data(), 2, 2, 3, -12, 0}, "pixel_stride -12 bytes is less than a pixel's 3 values (12 bytes)");
+  refused({buffer.data(), 2, 2, 3, 12, -24}, "row_stride -24 bytes is less than a row of 2 pixels (24 bytes)");
+  refused({buffer.data(), 2, 2, 3, PTRDIFF_MIN, 0}, "is less than a pixel's");
+  refused({buffer.data(), -2, 2, 3, 0, 0}, "size -2x2 is empty");
+  refused({buffer.data(), 2, INT32_MIN, 3, 0, 0}, "is empty");
+}
+
+TEST_CASE("user buffers: misaligned strides and data read every value exactly (no aligned load is assumed)") {
+  // Pixels of 13 bytes (3 floats and a byte of padding), rows of 41 bytes, from the buffer's byte 1: no float is
+  // 4-byte aligned. Pixel (x, y) holds (100 y + 10 x + c) in channel c.
+  const int w = 3, h = 2;
+  const std::ptrdiff_t pixel = 13, row = 41;
+  std::vector<unsigned char> bytes(size_t(1 + row * h), 0xAB);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float v = float(100 * y + 10 * x + c);
+        std::memcpy(bytes.data() + 1 + y * row + x * pixel + 4 * c, &v, 4);
+      }
+  const RgbPlane rgb = rgb_plane({bytes.data() + 1, w, h, 3, pixel, row});
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) CHECK(rgb.at(x, y) == glm::vec3(100 * y + 10 * x, 100 * y + 10 * x + 1, 100 * y + 10 * x + 2));
 }

@@ -15,6 +15,10 @@
 //   Var = max(0, sum_sq / n - l^(0)^2): E[l^2] = sum_sq / n differs by 3 e E[l^2]; l^(0)^2 from the two means by
 //   (1 + 3e)^2 - 1 <= 6.01 e l^(0)^2, and one rounding on each side, e l^(0)^2; the subtraction rounds once on each
 //   side, e E[l^2]. With l^(0)^2 <= E[l^2] <= L^2: at most 12 e L^2; max(0, .) does not widen it.
+// The variants (GradientForm): abs(delta) is exact too. The per-sample ratio r = min(1, k (|delta| / Delta)^p) of
+// gradient_normalize = before divides once: 3 e relative for the quotient q <= ... (q may exceed 1 before the
+// clamp, which is 1-Lipschitz), squared (p = 2) 2 (3 e) + e, times k <= 1 plus a rounding: r within 8 e of the
+// golden r, since r <= 1 where it is not clamped; the sample-present weight 1 is exact.
 // A device that flushes subnormal floats to zero (Vulkan allows it without DenormPreserve) moves each result by
 // under 2^-126 (a subnormal luminance of the inputs here is 0 already).
 // On a CPU device (lavapipe) the divisions round correctly, as C++'s do, so every term above is 0 and the test asks
@@ -53,10 +57,11 @@ double largest_luminance(const RgbPlane& noisy, const SurfacePlanes& surface) {
 
 // Port and golden pass on the same inputs: within the banner's bound, or bit-identical on a CPU device.
 void check_port(VulkanContext& context, const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev,
-                const SurfacePlanes& surface, int s, double* ms = nullptr) {
-  INFO("frame " << noisy.width << "x" << noisy.height << ", s " << s);
-  const GradientImage golden = gradient_image(noisy, source, prev, surface, s);
-  const GradientImage gpu = gradient_image_vulkan(context, noisy, source, prev, surface, s, ms);
+                const SurfacePlanes& surface, int s, double* ms = nullptr, const GradientForm& form = {}) {
+  INFO("frame " << noisy.width << "x" << noisy.height << ", s " << s << ", form: before " << form.before
+                << ", abs " << form.absolute << ", p " << form.exponent << ", k " << form.scale);
+  const GradientImage golden = gradient_image(noisy, source, prev, surface, s, form);
+  const GradientImage gpu = gradient_image_vulkan(context, noisy, source, prev, surface, s, form, ms);
   REQUIRE(gpu.stratum_size == golden.stratum_size);
   REQUIRE(gpu.values.delta.width == golden.values.delta.width);
   REQUIRE(gpu.values.delta.height == golden.values.delta.height);
@@ -83,7 +88,7 @@ void check_port(VulkanContext& context, const RgbPlane& noisy, const UIntPlane& 
                                              << normals << ", depth gradient " << depth_grad << ", mesh mismatches "
                                              << mesh_mismatches << " (bound 0)");
   INFO((exact ? "CPU device: exact" : "within the derived bound"));
-  CHECK(delta == 0.0);
+  CHECK(delta <= (exact || !form.before ? 0.0 : 8.0 * e));  // the ratio divides (banner)
   CHECK(norm == 0.0);
   CHECK(lum <= (exact ? 0.0 : luminance_bound));
   CHECK(var <= (exact ? 0.0 : variance_bound));
@@ -162,6 +167,12 @@ TEST_CASE("the gradient image port matches gradient_image on random frames") {
     check_port(*context, f.noisy, f.source, f.prev, f.surface, c.s, &ms);
     CHECK(ms > 0.0);
   }
+  // The variants: abs(delta), and the per-sample ratio with the peers' square and scale.
+  const RandomFrame v = random_frame(rng, 41, 29, 3);
+  for (const GradientForm form : {GradientForm{.absolute = true}, GradientForm{.before = true},
+                                  GradientForm{.before = true, .exponent = 2},
+                                  GradientForm{.before = true, .scale = 0.1f}})
+    check_port(*context, v.noisy, v.source, v.prev, v.surface, 3, nullptr, form);
   // No gradient sample anywhere: delta = Delta = 0 everywhere.
   RandomFrame f = random_frame(rng, 41, 29, 3);
   check_port(*context, f.noisy, UIntPlane(41, 29, kInvalidId), f.prev, f.surface, 3);

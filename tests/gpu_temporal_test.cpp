@@ -13,13 +13,14 @@
 // records hold them, so the golden pass runs on those (golden_temporal); the moments are fp32 and match as above.
 // The colour C' is then stored as a half: the bound grows by that rounding, 2^-10 relative (gpu_fixtures.h).
 //
-// A-SVGF's per-pixel alpha (TemporalAdaptive, the `adaptive` push constant) adds (1 - lambda) alpha + lambda
-// [ASVGF18 Eq. 15] and, with restart_history, n_{i-1} (1 - lambda): products and sums without a division, the same
-// fp32 operations on both sides, so the bound above holds unchanged and n stays exact.
+// A-SVGF's per-pixel weights (TemporalAdaptive, the `adaptive` push constant) replace alpha and alpha_mu by the
+// given alpha_i and alpha_mu_i [ASVGF18 Eq. 15] and, with restart_history, add n_{i-1} (1 - lambda): a product
+// without a division, the same fp32 operations on both sides, so the bound above holds unchanged and n stays exact.
 #include "gpu/temporal_gpu.h"
 
 #include "core/error.h"
 #include "eval/frame_diff.h"
+#include "filters/asvgf/adaptive_alpha.h"
 #include "filters/svgf/temporal.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -174,19 +175,22 @@ TEST_CASE("the temporal port matches temporal_pass with A-SVGF's per-pixel lambd
   const SurfacePlanes cur = random_surface(rng, w, h);
   const TemporalHistory prev = random_history(rng, cur);
   const RgbPlane noisy = random_plane(rng, w, h, 0.0f, 10.0f);
-  // lambda: 0 (history kept), 1 (dropped) and values between, as adaptive_alpha_pass makes them.
+  // lambda: 0 (history kept), 1 (dropped) and values between, and the weights Eq. 15 makes of it, as
+  // adaptive_alpha_pass does (the moments' from another base weight).
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  FloatPlane lambda(w, h);
-  for (float& l : lambda.data) {
+  FloatPlane lambda(w, h), alpha(w, h), alpha_moments(w, h);
+  for (size_t i = 0; i < lambda.data.size(); ++i) {
     const float r = u(rng);
-    l = r < 0.3f ? 0.0f : r < 0.5f ? 1.0f : u(rng);
+    lambda.data[i] = r < 0.3f ? 0.0f : r < 0.5f ? 1.0f : u(rng);
+    alpha.data[i] = adaptive_alpha(0.1f, lambda.data[i]);
+    alpha_moments.data[i] = adaptive_alpha(0.15f, lambda.data[i]);
   }
   SvgfParams params;
   params.alpha = 0.1f;
   params.alpha_moments = 0.1f;
   for (const bool restart : {true, false}) {
     INFO("restart_history " << restart);
-    const TemporalAdaptive adaptive{&lambda, restart};
+    const TemporalAdaptive adaptive{&lambda, &alpha, &alpha_moments, restart};
     const TemporalOutput golden = golden_temporal(*context, noisy, cur, prev, params, &adaptive);
     const TemporalOutput gpu = temporal_vulkan(*context, noisy, cur, prev, params, nullptr, &adaptive);
     check_within_bound(*context, gpu, golden);
@@ -198,7 +202,7 @@ TEST_CASE("the temporal port matches temporal_pass with A-SVGF's per-pixel lambd
     CHECK(moved > 0.1);
   }
   const FloatPlane wrong_size(w - 1, h);
-  const TemporalAdaptive misfit{&wrong_size, true};
+  const TemporalAdaptive misfit{&lambda, &wrong_size, &alpha_moments, true};
   CHECK_THROWS_AS(temporal_vulkan(*context, noisy, cur, prev, params, nullptr, &misfit), Error);
   check_no_validation_messages(*context);
 }

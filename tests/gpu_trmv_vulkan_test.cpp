@@ -20,6 +20,8 @@
 //   occlusion, 6 frames at 64x36: printed by the test (about 1e-3 on fence, all from the visibility).
 #include "gpu/trmv_vulkan.h"
 
+#include "gpu/port_bounds.h"
+
 #include "eval/frame_diff.h"
 #include "filters/image.h"
 #include "filters/passes.h"
@@ -42,7 +44,7 @@ using namespace rtdr::gpu_test;
 
 namespace {
 
-constexpr double kTrmvRelError = 5e-3;
+const double kTrmvRelError = find_port_bound("trmv", "color.R")->fp32;  // gpu/port_bounds.h: the guard above
 constexpr double kTemporalRelError = 1e-5;
 
 // The largest relative difference of two RGB planes, per channel, relative to max(|b|, floor).

@@ -116,7 +116,7 @@ TEST_CASE("a sample hidden by a nearer object in the current frame is reported o
   CHECK(forward_project(s, close, view, close_vis, prev_vis.sample(32, 24), 0.001f).occluded);
 }
 
-TEST_CASE("samples that leave the screen or go behind the camera are reported off screen") {
+TEST_CASE("samples that leave the screen, go behind the camera or lie far off (damaged barycentrics) are off screen") {
   Scene s = camera_scene();
   add_quad(s, 1.0f, {0.0f, 0.0f, -4.0f});
   const ScenePose prev = s.pose(0.0);
@@ -132,5 +132,17 @@ TEST_CASE("samples that leave the screen or go behind the camera are reported of
     CHECK_FALSE(f.on_screen);
     CHECK(f.pixel == glm::ivec2(-1, -1));
     CHECK_FALSE(f.occluded);
+  }
+  // Frame i-1 of render --gradients comes from a file: its barycentrics can be anything, finite or not. The point
+  // they name projects to a huge, infinite or NaN position, which must be off screen before it becomes an int.
+  CHECK(forward_project(s, prev, view, prev_vis, sample).on_screen);  // control: as rendered
+  for (const glm::vec2 bary : {glm::vec2(1e30f, 0.0f), glm::vec2(0.0f, -1e20f), glm::vec2(3e38f, 3e38f),
+                               glm::vec2(NAN, 0.0f), glm::vec2(0.0f, INFINITY)}) {
+    INFO(bary.x << ", " << bary.y);
+    SurfaceSample damaged = sample;
+    damaged.bary = bary;
+    const ForwardProjection f = forward_project(s, prev, view, prev_vis, damaged);
+    CHECK_FALSE(f.on_screen);
+    CHECK(f.pixel == glm::ivec2(-1, -1));
   }
 }

@@ -256,9 +256,9 @@ TEST_CASE("dumps hold every documented layer and probes re-compute the dumped va
   for (const auto& [name, plane] : dump.float_channels()) dumped.push_back(name);
   const std::vector<std::string> expected = declared_dump("svgf", params);
   CHECK(dumped == expected);
-  // Counted by hand: per stream, temporal (3 channels), two moments, the history length, the variance, per level
-  // 3 + 2, and filtered (3); then filter.tonemapped (3).
-  CHECK(expected.size() == size_t(2 * (3 + 2 + 1 + 1 + params.atrous_levels * (3 + 2) + 3) + 3));
+  // Counted by hand: per stream, temporal (3 channels), two moments, the history length, the variance and which
+  // estimate it is, per level 3 + 2, and filtered (3); then filter.tonemapped (3).
+  CHECK(expected.size() == size_t(2 * (3 + 2 + 1 + 1 + 1 + params.atrous_levels * (3 + 2) + 3) + 3));
   for (const std::string& name : expected) {
     INFO(name);
     CHECK(dump.has(name));
@@ -417,4 +417,62 @@ TEST_CASE("after 8 frames, svgf is closer to a 64-spp reference than the 1-spp i
   INFO("RMSE: 1-spp input " << input_error << ", svgf " << svgf_error);
   CHECK(svgf_error < input_error);
   CHECK(svgf_error < 0.5 * input_error);
+}
+
+TEST_CASE("streams = 1 filters direct + indirect as one stream [ASVGF18 Sec. 4], for svgf and asvgf alike") {
+  // The same as streams = 2 on a frame whose direct light holds the sum and whose indirect light is black (with
+  // gradient.prev_direct the sum of the previous luminances): bit for bit, since a black stream filters to 0.
+  const int w = 40, h = 24;
+  for (const std::string name : {"svgf", "asvgf"}) {
+    INFO("method " << name);
+    MethodParams one = method_defaults(name), two = one;
+    one.svgf.streams = 1;
+    const std::unique_ptr<Method> combined = make_method(name, one), summed = make_method(name, two);
+    for (int f = 0; f < 3; ++f) {
+      const Frame& in = rendered_with_gradients("pillars", f, w, h);
+      Frame sum = in;
+      const OneStream o = one_stream(in, name == "asvgf");
+      set_rgb_plane(sum, "direct", o.illumination);
+      set_rgb_plane(sum, "indirect", RgbPlane(w, h));
+      if (name == "asvgf") {
+        sum.float_channel("gradient.prev_direct") = o.prev_luminance;
+        sum.float_channel("gradient.prev_indirect") = FloatPlane(w, h);
+      }
+      Frame dump(w, h);
+      const Frame a = combined->filter(in, &dump), b = summed->filter(sum);
+      CHECK(a.float_channel("color.G").data == b.float_channel("color.G").data);
+      CHECK(a.float_channel("display.R").data == b.float_channel("display.R").data);
+      // Its dump names the one stream "combined", and holds no direct or indirect layer.
+      CHECK(dump.has("filter.combined.temporal.G"));
+      for (const auto& [channel, plane] : dump.float_channels())
+        CHECK((channel.rfind("filter.direct.", 0) != 0 && channel.rfind("filter.indirect.", 0) != 0));
+      CHECK(combined->dump_channels().size() == dump.float_channels().size());
+    }
+    CHECK_FALSE(combined->probe("temporal", 20, 12, "combined", 0).terms().empty());
+    CHECK_THROWS_WITH(combined->probe("temporal", 20, 12, "direct", 0), Catch::Contains("combined"));
+  }
+}
+
+TEST_CASE("the dump shows which variance each pixel took: the spatial estimate exactly where n < 4") {
+  const int w = 40, h = 24;
+  const std::unique_ptr<Method> svgf = make_method("svgf");
+  int spatial = 0, temporal = 0;
+  for (int f = 0; f < 5; ++f) {
+    const Frame& in = rendered("pillars", f, w, h);
+    Frame dump(w, h);
+    svgf->filter(in, &dump);
+    for (const std::string s : {"direct", "indirect"}) {
+      const FloatPlane& n = dump.float_channel("filter." + s + ".history_length");
+      const FloatPlane& flag = dump.float_channel("filter." + s + ".variance.spatial");
+      const UIntPlane& mesh = in.uint_channel("id.mesh");
+      for (size_t i = 0; i < n.data.size(); ++i) {
+        const float want = mesh.data[i] != kInvalidId && n.data[i] < 4.0f ? 1.0f : 0.0f;
+        CHECK(flag.data[i] == want);
+        spatial += flag.data[i] == 1.0f;
+        temporal += mesh.data[i] != kInvalidId && flag.data[i] == 0.0f;
+      }
+    }
+  }
+  CHECK(spatial > 0);   // the first frames, and disocclusions
+  CHECK(temporal > 0);  // frame 4 on, where the history held
 }

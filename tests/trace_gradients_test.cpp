@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <bit>
+#include <functional>
 #include <optional>
 #include <cmath>
 #include <vector>
@@ -391,4 +392,46 @@ TEST_CASE("Eq. 4-5: without seed reuse Var(delta) = 2 Var(f) on a static scene, 
   }
   WARN("Eq. 4-5 on pillars: Var(delta) with seed reuse " << with_reuse << ", without " << without_reuse);
   CHECK(with_reuse < 0.5 * without_reuse);
+}
+
+TEST_CASE("a previous frame whose ids, barycentrics, seed frames or light do not fit the scene is refused") {
+  // render --gradients continues from frame A-1 read from a file: every value that indexes the scene or memory is
+  // checked before any is used (PreviousFrame::require_fits); an id beyond the scene read past its arrays.
+  const Scene scene = load_scene("cornell");
+  const std::vector<Frame> frames = render_sequence(scene, 0, 1, 16, 9);
+  const PreviousFrame prev = PreviousFrame::from_frame(frames[1]);
+  CHECK_NOTHROW(prev.require_fits(scene, 2, "f.exr"));  // as rendered
+  size_t i = 0;
+  while (prev.vis.instance[i] == kInvalidId) ++i;
+  const uint32_t triangles = uint32_t(scene.meshes[size_t(scene.instances[prev.vis.instance[i]].mesh)].triangles.size());
+  const auto refused = [&](const std::function<void(PreviousFrame&)>& change, const std::string& part) {
+    PreviousFrame p = prev;
+    change(p);
+    INFO(part);
+    CHECK_THROWS_WITH(p.require_fits(scene, 2, "f.exr"),
+                      Catch::StartsWith("'f.exr' (frame 1, which frame 2 continues): " + part));
+  };
+  refused([&](PreviousFrame& p) { p.vis.instance[i] = uint32_t(scene.instances.size()); },
+          "id.instance is " + std::to_string(scene.instances.size()) + ", but scene 'cornell' has " +
+              std::to_string(scene.instances.size()) + " instances");
+  refused([&](PreviousFrame& p) { p.vis.triangle[i] = triangles; },
+          "id.triangle is " + std::to_string(triangles) + ", but instance");
+  refused([&](PreviousFrame& p) { p.vis.bary[i].y = NAN; }, "bary.U or bary.V is not finite");
+  refused([&](PreviousFrame& p) { p.seed_frame[0] = 2; }, "rng.seed_frame is 2, not a frame before 2");
+  refused([&](PreviousFrame& p) { p.luminance_indirect[3] = INFINITY; }, "the luminance of direct or indirect");
+  // Where no surface is seen, the triangle and barycentrics are never read: anything goes.
+  PreviousFrame background = prev;
+  size_t b = 0;
+  while (b < background.vis.instance.size() && background.vis.instance[b] != kInvalidId) ++b;
+  if (b < background.vis.instance.size()) {
+    background.vis.triangle[b] = 0xFFFFFFF0u;
+    background.vis.bary[b] = glm::vec2(NAN);
+    CHECK_NOTHROW(background.require_fits(scene, 2, "f.exr"));
+  }
+  // And render_frame_with_gradients checks before it selects: a frame with a triangle id past the mesh.
+  Frame damaged = frames[1];
+  damaged.source = "out/frame_0001.exr";
+  damaged.uint_channel("id.triangle").data[i] = 4'000'000;
+  CHECK_THROWS_WITH(render_frame_with_gradients(scene, 2, 16, 9, {}, {}, &damaged),
+                    Catch::StartsWith("'out/frame_0001.exr' (frame 1, which frame 2 continues): id.triangle is 4000000"));
 }

@@ -152,7 +152,7 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
   };
   CHECK(m->probe_passes() == std::vector<std::string>{"trmv_splat", "trmv_spatial", "trmv_falloff", "trmv_atrous",
                                                       "trmv_reshade", "trmv_reflection", "trmv_temporal",
-                                                      "trmv_cleanup"});
+                                                      "trmv_cleanup", "tonemap"});
   int covered = 0;
   for (int y = 2; y < kH; y += 6)
     for (int x = 3; x < kW; x += 7) {
@@ -173,6 +173,8 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
             dump.float_channel("filter.trmv.diffuse.spatial.R").data[i]);
       CHECK(term(m->probe("trmv_reflection", x, y, "glossy", 0), "c~")[2] ==
             dump.float_channel("filter.trmv.glossy.spatial.B").data[i]);
+      CHECK(term(m->probe("tonemap", x, y, "", -1), "display colour")[1] ==
+            dump.float_channel("filter.tonemapped.G").data[i]);
     }
   CHECK(covered > 10);
   CHECK_THROWS_AS(m->probe("atrous", 1, 1, "visibility", 0), Error);      // not one of trmv's passes

@@ -27,7 +27,9 @@
 #              levels
 # The logs, CSVs and the SM clock go to $LOGS (default /tmp/rtdr_device), packed after every step into
 # $OUT/device.tgz (default out/device): the device tool brings back 8 files at most, and whatever a step had
-# written when a time limit struck. Each step's summary is printed too.
+# written when a time limit struck. Each step's summary is printed too. The `targets` and `bench` steps' CSVs are
+# the experiments gpu-targets and gpu-bench of eval/experiments.toml: back here, with device.tgz unpacked into DIR,
+# `tools/reproduce.py --from-csv gpu-targets DIR` writes their tables into docs/performance.md.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT=${OUT:-out/device}

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages RTDR needs (only the missing ones), then configures and builds build/.
+# Installs the Debian 12 packages RTDR needs (only the missing ones), then configures and builds build/: every
+# target, or only those named (`bash tools/setup.sh rtdr`: the command alone, as tools/demo.sh builds it).
 # Idempotent: when everything is installed and built it only runs an up-to-date check of the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,4 +21,8 @@ PACKAGES=(
 bash tools/install_missing.sh setup "${PACKAGES[@]}"
 
 [ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build
+if (($#)); then
+  cmake --build build --target "$@"
+else
+  cmake --build build
+fi

@@ -10,6 +10,8 @@
 #include "trace/render_key.h"
 #include "core/sampler.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -77,6 +79,33 @@ PreviousFrame PreviousFrame::from_frame(const Frame& frame) {
     for (size_t i = 0; i < source.data.size(); ++i) p.was_gradient[i] = source.data[i] != kInvalidId;
   }
   return p;
+}
+
+void PreviousFrame::require_fits(const Scene& scene, int frame_index, const std::string& source) const {
+  const std::string what = (source.empty() ? std::string("the previous frame") : "'" + source + "'") + " (frame " +
+                           std::to_string(frame_index - 1) + ", which frame " + std::to_string(frame_index) +
+                           " continues): ";
+  const auto fail = [&](size_t i, const std::string& problem) {
+    throw Error(what + problem + " at pixel (" + std::to_string(i % size_t(vis.width)) + ", " +
+                std::to_string(i / size_t(vis.width)) + ")");
+  };
+  for (size_t i = 0; i < vis.instance.size(); ++i) {
+    if (!std::isfinite(luminance_direct[i]) || !std::isfinite(luminance_indirect[i]))
+      fail(i, "the luminance of direct or indirect is not finite");
+    if (!seed_frame.empty() && seed_frame[i] >= uint32_t(std::max(frame_index, 0)))
+      fail(i, "rng.seed_frame is " + std::to_string(seed_frame[i]) + ", not a frame before " +
+                  std::to_string(frame_index));
+    const uint32_t instance = vis.instance[i];
+    if (instance == kInvalidId) continue;  // no surface: its triangle and barycentrics are never read
+    if (instance >= scene.instances.size())
+      fail(i, "id.instance is " + std::to_string(instance) + ", but scene '" + scene.name + "' has " +
+                  std::to_string(scene.instances.size()) + " instances");
+    const size_t triangles = scene.meshes[size_t(scene.instances[instance].mesh)].triangles.size();
+    if (vis.triangle[i] >= triangles)
+      fail(i, "id.triangle is " + std::to_string(vis.triangle[i]) + ", but instance " + std::to_string(instance) +
+                  "'s mesh has " + std::to_string(triangles) + " triangles");
+    if (!std::isfinite(vis.bary[i].x) || !std::isfinite(vis.bary[i].y)) fail(i, "bary.U or bary.V is not finite");
+  }
 }
 
 uint32_t select_gradient_source(const PreviousFrame& prev, int sx, int sy, const GradientParams& params,
@@ -205,6 +234,7 @@ Frame render_frame_with_gradients(const Scene& scene, int frame_index, int width
   if (prev) {
     require_same_sequence(*prev, key, frame_index);
     previous = PreviousFrame::from_frame(*prev);
+    previous.require_fits(scene, frame_index, prev->source);
     samples = gradient_samples(scene, g, previous, params, settings.seed);
   }
   for (const GradientSample& s : samples) {

@@ -92,6 +92,13 @@ struct PreviousFrame {
 
   // Throws rtdr::Error naming the first missing layer.
   static PreviousFrame from_frame(const Frame& frame);
+  // Checks every value that indexes the scene or memory, before any is used, for frame `frame_index`, which
+  // continues this one: each id.instance is kInvalidId or an instance of `scene`, each id.triangle (where there
+  // is an instance) a triangle of its mesh, the barycentrics there finite, each rng.seed_frame at most
+  // frame_index - 1, and the luminance of direct and indirect finite. A frame read from a file can hold any value
+  // (a frame of another scene, a damaged file), and an id beyond the scene would read past its arrays. Throws a
+  // one-line rtdr::Error naming `source` (the file), the frames, the channel, the pixel and the value.
+  void require_fits(const Scene& scene, int frame_index, const std::string& source) const;
 };
 
 // One gradient sample: frame i-1's pixel j carried to frame i's pixel jbar.

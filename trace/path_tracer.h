@@ -69,7 +69,7 @@ struct PathRecord {
 struct PathSample {
   glm::vec3 direct{0.0f};      // light arriving straight from emitters: NEE at x_0 and emitters hit from x_0
   glm::vec3 indirect{0.0f};    // everything that scattered at least once more
-  // Components, so that TRMV's split can be formed later:
+  // Components, from which trace/render_frame.cpp writes TRMV's layers (direct.visibility, indirect.diffuse, ...):
   glm::vec3 direct_unshadowed{0.0f};  // the NEE term at x_0 without its visibility
   float direct_visibility = 0.0f;     // 1 when the NEE shadow ray at x_0 reached the light, else 0
   glm::vec3 indirect_diffuse{0.0f};   // indirect through the diffuse lobe at x_0

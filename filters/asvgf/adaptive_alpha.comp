@@ -1,16 +1,19 @@
 // A-SVGF's adaptive temporal weight [ASVGF18 Sec. 3.5, Eq. 14-15], the Vulkan port of adaptive_alpha_pass
-// (filters/asvgf/adaptive_alpha.cpp), function for function: per stratum lambda = min(1, |delta^| / Delta^), 0 where
-// Delta^ <= 0 [ASVGF18 Eq. 14]; per pixel its maximum over the (2r+1)^2 strata around the pixel's stratum
+// (filters/asvgf/adaptive_alpha.cpp), function for function: per stratum lambda = min(1, k (|delta^| / Delta^)^p),
+// 0 where Delta^ <= 0 [ASVGF18 Eq. 14 for p = k = 1]; per pixel its maximum over the (2r+1)^2 strata around the pixel's stratum
 // [ASVGF18 Sec. 3.5], strata outside the grid skipped, and alpha_i = (1 - lambda_max) alpha + lambda_max
-// [ASVGF18 Eq. 15]. One invocation per pixel (and per stratum: adaptive_alpha_shared.h).
+// [ASVGF18 Eq. 15], and alpha_mu_i the same of alpha_mu: the only place Eq. 15 is computed on the GPU (SVGF's temporal
+// port reads both). One invocation per pixel (and per stratum: adaptive_alpha_shared.h).
 // The choices the paper leaves open are the golden pass's (filters/asvgf/adaptive_alpha.h).
-//   in:  binding 0 (delta^, Delta^, l, Var) per stratum; out: 1 (lambda_max, alpha_i) per pixel, 2 lambda per stratum.
+//   in:  binding 0 (delta^, Delta^, l, Var) per stratum; out: 1 (lambda_max, alpha_i, alpha_mu_i, 0) per pixel,
+//   2 lambda per stratum.
 //   Layout: filters/asvgf/adaptive_alpha_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order (tests/gpu_adaptive_alpha_test.cpp derives the bound).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#include "filters/asvgf/adaptive_alpha.glsl"
 #include "filters/asvgf/adaptive_alpha_shared.h"
 
 // The workgroup's shape, per device: the SVGF ports' (planes_shared.h).
@@ -18,7 +21,7 @@ layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSi
        local_size_x = kSvgfGroupSizeX, local_size_y = kSvgfGroupSizeY) in;
 
 RTDR_INPUT_RGBA(0, gradient)
-layout(std430, set = 0, binding = 1) writeonly buffer OutAlpha { vec2 out_alpha[]; };
+layout(std430, set = 0, binding = 1) writeonly buffer OutAlpha { vec4 out_alpha[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer OutLambda { float out_lambda[]; };
 
 layout(push_constant) uniform Push { AdaptiveAlphaPush push; };
@@ -31,22 +34,8 @@ AdaptiveAlphaPush frame;
 int grid_index(int x, int y) { return y * int(frame.grid_width) + x; }
 bool grid_inside(int x, int y) { return x >= 0 && y >= 0 && x < int(frame.grid_width) && y < int(frame.grid_height); }
 
-// lambda = min(1, |delta^| / Delta^), 0 where Delta^ <= 0 [ASVGF18 Eq. 14] (gradient_lambda).
-float gradient_lambda(float delta, float norm) {
-  // lambda(p) = min(1, |delta^(p)| / Delta^(p)) [ASVGF18 Eq. 14]; no sample in reach (Delta^ = 0): 0.
-  precise float quotient = abs(delta) / norm;
-  return norm > 0.0 ? min(1.0, quotient) : 0.0;
-}
-
-// alpha_i = (1 - lambda) alpha + lambda [ASVGF18 Eq. 15] (adaptive_alpha).
-float adaptive_alpha(float alpha, float lambda) {
-  // alpha_i(p) = (1 - lambda(p)) alpha + lambda(p) [ASVGF18 Eq. 15].
-  precise float alpha_i = (1.0 - lambda) * alpha + lambda;
-  return alpha_i;
-}
-
-// The golden per-pixel function, adaptive_alpha_pixel: (lambda_max, alpha_i) at pixel (x, y).
-vec2 adaptive_alpha_pixel(int x, int y) {
+// The golden per-pixel function, adaptive_alpha_pixel: (lambda_max, alpha_i, alpha_mu_i, 0) at pixel (x, y).
+vec4 adaptive_alpha_pixel(int x, int y) {
   const int s = frame.stratum_size, radius = frame.radius;
   const int sx = x / s, sy = y / s;
   // The maximum over the (2r + 1)^2 strata around (sx, sy) [ASVGF18 Sec. 3.5].
@@ -55,10 +44,11 @@ vec2 adaptive_alpha_pixel(int x, int y) {
     for (int qx = sx - radius; qx <= sx + radius; ++qx) {
       if (!grid_inside(qx, qy)) continue;
       const vec4 g = gradient(grid_index(qx, qy));
-      const float lambda = gradient_lambda(g.x, g.y);
+      const float lambda = gradient_ratio(g.x, g.y, frame.exponent, frame.scale);
       lambda_max = max(lambda_max, lambda);
     }
-  return vec2(lambda_max, adaptive_alpha(frame.alpha, lambda_max));
+  // Eq. 15 for the colour and, with the same lambda, for the moments: what the temporal pass reads.
+  return vec4(lambda_max, adaptive_alpha(frame.alpha, lambda_max), adaptive_alpha(frame.alpha_moments, lambda_max), 0.0);
 }
 
 // adaptive_alpha_pass: lambda at every stratum, adaptive_alpha_pixel at every pixel.
@@ -68,7 +58,7 @@ void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (grid_inside(p.x, p.y)) {
     const vec4 g = gradient(grid_index(p.x, p.y));
-    out_lambda[grid_index(p.x, p.y)] = gradient_lambda(g.x, g.y);
+    out_lambda[grid_index(p.x, p.y)] = gradient_ratio(g.x, g.y, frame.exponent, frame.scale);
   }
   if (p.x < int(frame.width) && p.y < int(frame.height))
     out_alpha[p.y * int(frame.width) + p.x] = adaptive_alpha_pixel(p.x, p.y);

@@ -7,7 +7,8 @@
 //   0 (delta^, Delta^, l, Var)  RGBA32F, the stratum grid's size (grid_width x grid_height): the reconstructed
 //                           gradient and its normalisation (gradient_atrous.h, last iteration), as the
 //                           reconstruction's port writes its values (gradient_atrous_shared.h); l and Var unread
-//   1 (lambda_max, alpha_i) written, std430 array of vec2, the frame's size (width x height)
+//   1 (lambda_max, alpha_i, alpha_mu_i, 0) written, std430 array of vec4, the frame's size (width x height): what
+//                           SVGF's temporal port reads (filters/svgf/temporal_shared.h, bindings 13-14)
 //   2 lambda                written, std430 array of float, the stratum grid's size
 #ifndef RTDR_FILTERS_ASVGF_ADAPTIVE_ALPHA_SHARED_H
 #define RTDR_FILTERS_ASVGF_ADAPTIVE_ALPHA_SHARED_H
@@ -36,11 +37,14 @@ struct AdaptiveAlphaPush {
   RTDR_SHARED_UINT grid_height;
   RTDR_SHARED_INT stratum_size;  // s (>= 1)
   RTDR_SHARED_INT radius;        // r (>= 0): the maximum over (2r + 1)^2 strata
-  float alpha;                   // the base alpha of Eq. 15
+  float alpha;                   // the base alpha of Eq. 15, the colour's
+  float alpha_moments;           // and the moments'
+  RTDR_SHARED_INT exponent;      // p and k of lambda = min(1, k (|delta^| / Delta^)^p) (AdaptiveAlphaParams)
+  float scale;
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(AdaptiveAlphaPush) == 28, "seven 4-byte fields, the std430 layout of the GLSL block");
+static_assert(sizeof(AdaptiveAlphaPush) == 40, "ten 4-byte fields, the std430 layout of the GLSL block");
 }  // namespace rtdr
 #endif
 

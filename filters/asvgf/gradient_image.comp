@@ -2,7 +2,8 @@
 // (filters/asvgf/gradient_image.cpp), function for function: per stratum of s x s pixels (fewer at the right and
 // bottom border), delta = the gradient sample's luminance now minus before [ASVGF18 Eq. 3] and Delta = the larger of
 // the two [ASVGF18 Eq. 13] (both 0 without a sample), the mean luminance of the covered pixels and its population
-// variance [ASVGF18 Sec. 3.4], and the geometry of the representative pixel. One invocation per stratum.
+// variance [ASVGF18 Sec. 3.4], and the geometry of the representative pixel; with the GradientForm's variants
+// abs(delta), or the per-sample ratio and the sample-present weight. One invocation per stratum.
 // The choices the paper leaves open are the golden pass's (filters/asvgf/gradient_image.h).
 //   in:  bindings 0 (C_i, f_{i-1}), 1 gradient.source, 2 surface, 3 depth gradient, 4 id.mesh;
 //   out: 5 (delta, Delta, l^(0), Var), 6 (n, z), 7 depth gradient, 8 id.mesh, 9 samples per stratum.
@@ -13,6 +14,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "core/color.glsl"
+#include "filters/asvgf/adaptive_alpha.glsl"
 #include "filters/asvgf/gradient_image_shared.h"
 
 // The workgroup's shape, per device: the SVGF ports' (planes_shared.h).
@@ -39,6 +41,20 @@ GradientImagePush frame;
 // The frame's planes (Plane::at) and SurfacePlanes::covered.
 int pixel_index(int x, int y) { return y * int(frame.width) + x; }
 bool covered(int x, int y) { return mesh(pixel_index(x, y)).x != RTDR_INVALID_ID; }
+
+// The values one gradient sample adds, (delta, Delta) as the push block's GradientForm makes them
+// (gradient_sample_values).
+vec2 gradient_sample_values(float f_now, float f_before) {
+  // delta = f_i(G~, xi_{i-1,j}) - f_{i-1}(G, xi_{i-1,j}) as luminance [ASVGF18 Eq. 3].
+  precise float delta = f_now - f_before;
+  // Delta = max(f_i(G~, xi_{i-1,j}), f_{i-1}(G, xi_{i-1,j})) [ASVGF18 Eq. 13].
+  const float norm = max(f_now, f_before);
+  // Normalised per sample (Q2RTX, RTGL1): r = min(1, k (|delta| / Delta)^p), beside the sample-present weight 1.
+  if (frame.before != 0u) return vec2(gradient_ratio(delta, norm, frame.exponent, frame.scale), 1.0);
+  // abs(delta): opposite changes cannot cancel in the reconstruction.
+  if (frame.absolute != 0u) return vec2(abs(delta), norm);
+  return vec2(delta, norm);
+}
 
 // One stratum's values and geometry (GradientStratum), and how many gradient samples it holds.
 struct GradientStratum {
@@ -75,12 +91,10 @@ GradientStratum gradient_stratum(int sx, int sy) {
       sum_squares += l * l;
       if (source(pixel_index(x, y)).x == RTDR_INVALID_ID) continue;
       ++result.samples;  // C++: more than one throws
-      // delta = f_i(G~, xi_{i-1,j}) - f_{i-1}(G, xi_{i-1,j}) as luminance [ASVGF18 Eq. 3]; jbar = (x, y).
-      const float f_now = l, f_before = c.w;
-      precise float delta = f_now - f_before;
-      result.delta = delta;
-      // Delta = max(f_i(G~, xi_{i-1,j}), f_{i-1}(G, xi_{i-1,j})) [ASVGF18 Eq. 13].
-      result.norm = max(f_now, f_before);
+      // jbar = (x, y): this frame's luminance there, and the previous frame's at j [ASVGF18 Eq. 2].
+      const vec2 values = gradient_sample_values(l, c.w);
+      result.delta = values.x;
+      result.norm = values.y;
     }
   if (count > 0) {
     precise float mean = sum / float(count);

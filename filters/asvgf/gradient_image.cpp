@@ -4,15 +4,32 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "filters/asvgf/adaptive_alpha.h"
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <string>
 
 namespace rtdr {
 
+glm::vec2 gradient_sample_values(float f_now, float f_before, const GradientForm& form, Probe* probe) {
+  // delta = f_i(G~, xi_{i-1,j}) - f_{i-1}(G, xi_{i-1,j}) as luminance [ASVGF18 Eq. 3].
+  const float delta = f_now - f_before;
+  // Delta = max(f_i(G~, xi_{i-1,j}), f_{i-1}(G, xi_{i-1,j})) [ASVGF18 Eq. 13].
+  const float norm = std::max(f_now, f_before);
+  note(probe, "f_i - f_{i-1}", delta, "[ASVGF18 Eq. 3]");
+  note(probe, "max(f_i, f_{i-1})", norm, "[ASVGF18 Eq. 13]");
+  // Normalised per sample (Q2RTX, RTGL1): r = min(1, k (|delta| / Delta)^p), beside the sample-present weight 1.
+  if (form.before) return {gradient_ratio(delta, norm, form.exponent, form.scale), 1.0f};
+  // abs(delta): opposite changes cannot cancel in the reconstruction.
+  if (form.absolute) return {std::abs(delta), norm};
+  return {delta, norm};
+}
+
 GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
-                                 const SurfacePlanes& surface, int s, int sx, int sy, Probe* probe) {
+                                 const SurfacePlanes& surface, int s, int sx, int sy, const GradientForm& form,
+                                 Probe* probe) {
   GradientStratum out;
   // The stratum's pixels: s x s, fewer at the right and bottom edges.
   const int x0 = sx * s, y0 = sy * s;
@@ -42,17 +59,20 @@ GradientStratum gradient_stratum(const RgbPlane& noisy, const UIntPlane& source,
       if (j == kInvalidId) continue;
       if (++samples > 1)
         throw Error("stratum (" + std::to_string(sx) + ", " + std::to_string(sy) + ") holds two gradient samples");
-      // delta = f_i(G~, xi_{i-1,j}) - f_{i-1}(G, xi_{i-1,j}) as luminance [ASVGF18 Eq. 3]; jbar = (x, y).
+      // jbar = (x, y): this frame's luminance there, and the previous frame's at j [ASVGF18 Eq. 2].
       const float f_now = l, f_before = prev_luminance.at(x, y);
-      out.delta = f_now - f_before;
-      // Delta = max(f_i(G~, xi_{i-1,j}), f_{i-1}(G, xi_{i-1,j})) [ASVGF18 Eq. 13].
-      out.norm = std::max(f_now, f_before);
       note(probe, "gradient sample jbar", glm::vec2(float(x), float(y)), "[ASVGF18 Sec. 3.3]");
       note(probe, "f_i(G~, xi_{i-1,j})", f_now, "[ASVGF18 Eq. 2] this frame's luminance at jbar");
       note(probe, "f_{i-1}(G, xi_{i-1,j})", f_before, "[ASVGF18 Eq. 2] gradient.prev_<stream>");
+      const glm::vec2 values = gradient_sample_values(f_now, f_before, form, probe);
+      out.delta = values.x;
+      out.norm = values.y;
     }
-  note(probe, "delta", out.delta, "[ASVGF18 Eq. 3] 0 without a sample");
-  note(probe, "Delta", out.norm, "[ASVGF18 Eq. 13] 0 without a sample");
+  note(probe, form.before ? "r (the sample's ratio)" : form.absolute ? "abs(delta)" : "delta", out.delta,
+       form.before ? "min(1, k (|delta| / Delta)^p) per sample; 0 without a sample"
+                   : "[ASVGF18 Eq. 3] 0 without a sample");
+  note(probe, form.before ? "sample-present weight" : "Delta", out.norm,
+       form.before ? "1 where a sample is, 0 without" : "[ASVGF18 Eq. 13] 0 without a sample");
   if (count > 0) {
     out.luminance = sum / float(count);
     out.variance = std::max(0.0f, sum_squares / float(count) - out.luminance * out.luminance);
@@ -84,12 +104,12 @@ GradientImage gradient_image_grid(const RgbPlane& noisy, const UIntPlane& source
 }
 
 GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, const FloatPlane& prev_luminance,
-                             const SurfacePlanes& surface, int s) {
+                             const SurfacePlanes& surface, int s, const GradientForm& form) {
   GradientImage g = gradient_image_grid(noisy, source, prev_luminance, surface, s);
   const int sw = g.values.delta.width, sh = g.values.delta.height;
   parallel_rows(sh, [&](int sy) {
     for (int sx = 0; sx < sw; ++sx) {
-      const GradientStratum r = gradient_stratum(noisy, source, prev_luminance, surface, s, sx, sy);
+      const GradientStratum r = gradient_stratum(noisy, source, prev_luminance, surface, s, sx, sy, form);
       g.values.delta.at(sx, sy) = r.delta;
       g.values.norm.at(sx, sy) = r.norm;
       g.values.luminance.at(sx, sy) = r.luminance;
@@ -105,17 +125,26 @@ GradientImage gradient_image(const RgbPlane& noisy, const UIntPlane& source, con
   return g;
 }
 
-int frame_stratum_size(const Frame& frame, const std::string& method) {
+std::string stratum_size_problem(const Frame& frame, int* s) {
   const auto it = frame.attributes.find("rtdr.gradient.stratum_size");
   if (it == frame.attributes.end())
-    throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
-                " needs frames rendered with gradient samples (rtdr render --gradients): no "
-                "rtdr.gradient.stratum_size");
-  int s = 0;
+    return "no header attribute rtdr.gradient.stratum_size: not rendered with gradient samples (rtdr render "
+           "--gradients)";
+  int size = 0;
   const char *first = it->second.data(), *last = first + it->second.size();
-  const auto [end, ec] = std::from_chars(first, last, s);
-  if (ec != std::errc() || end != last || s < 1 || s > 64)
-    throw Error(frame.source + ": rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)");
+  const auto [end, ec] = std::from_chars(first, last, size);
+  if (ec != std::errc() || end != last || size < 1 || size > 64)
+    return "rtdr.gradient.stratum_size '" + it->second + "' is not a stratum size (1 to 64)";
+  if (s) *s = size;
+  return "";
+}
+
+int frame_stratum_size(const Frame& frame, const std::string& method) {
+  int s = 0;
+  const std::string problem = stratum_size_problem(frame, &s);
+  if (!problem.empty())
+    throw Error((frame.source.empty() ? std::string("the input frame") : frame.source) + ": method " + method +
+                " reads gradient samples: " + problem);
   return s;
 }
 

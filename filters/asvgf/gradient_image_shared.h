@@ -37,18 +37,22 @@ namespace rtdr {
 RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientImageTexelBindings = 5;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kGradientImageStorageBindings = 5;
 
-// The push-constant block: the frame's size, the stratum grid's (ceil(width / s) x ceil(height / s)) and s.
-// One invocation per stratum.
+// The push-constant block: the frame's size, the stratum grid's (ceil(width / s) x ceil(height / s)), s, and the
+// GradientForm (gradient_image.h). One invocation per stratum.
 struct GradientImagePush {
   RTDR_SHARED_UINT width;
   RTDR_SHARED_UINT height;
   RTDR_SHARED_UINT grid_width;
   RTDR_SHARED_UINT grid_height;
   RTDR_SHARED_INT stratum_size;  // s (>= 1), the render's rtdr.gradient.stratum_size
+  RTDR_SHARED_UINT before;       // GradientForm: 1 normalises per sample
+  RTDR_SHARED_UINT absolute;     // 1: abs(delta) (after only)
+  RTDR_SHARED_INT exponent;      // p
+  float scale;                   // k
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GradientImagePush) == 20, "five 4-byte fields, the std430 layout of the GLSL block");
+static_assert(sizeof(GradientImagePush) == 36, "nine 4-byte fields, the std430 layout of the GLSL block");
 }  // namespace rtdr
 #endif
 

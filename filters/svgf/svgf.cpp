@@ -11,7 +11,7 @@
 
 namespace rtdr {
 
-// Every dump layer is named by its declaration in filters/passes.h (dump_layer), listed in docs/buffers.md.
+// Every logged layer is named by its declaration in filters/passes.h, listed in docs/buffers.md.
 using namespace layers;
 
 SvgfFilter::SvgfFilter(const SvgfOptions& options) : options_(options) {
@@ -46,58 +46,33 @@ const RgbPlane& SvgfFilter::Stream::spatial_result() const {
   return temporal.color;
 }
 
-void SvgfFilter::adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name) {
-  const SvgfParams& p = options_.svgf;
-  const int s_size = stratum_size_, w = s.noisy.width, h = s.noisy.height;
-  // 1. The gradient image on the stratum grid [ASVGF18 Sec. 3.4, Eq. 3, Eq. 13].
-  time_pass("gradient", [&] { s.gradient = gradient_image(s.noisy, gradient_source_, s.prev_luminance, surface_, s_size); });
-  const auto dump_strata = [&](const LayerDecl& layer, int level, const FloatPlane& strata) {
-    if (dump) dump_layer(dump, layer, name, level, replicate_strata(strata, s_size, w, h));
-  };
-  dump_strata(kGradientDelta, -1, s.gradient.values.delta);
-  dump_strata(kGradientNorm, -1, s.gradient.values.norm);
-  dump_strata(kGradientLuminance, -1, s.gradient.values.luminance);
-  dump_strata(kGradientVariance, -1, s.gradient.values.variance);
-  // 2. Its reconstruction, iteration k reading iteration k - 1 [ASVGF18 Eq. 7-12].
-  s.gradient_levels.clear();
-  for (int level = 0; level < options_.asvgf.gradient_levels; ++level) {
-    time_pass("gradient_atrous", [&] {
-      const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels.back();
-      s.gradient_levels.push_back(gradient_atrous_level(in, s.gradient, level, p));
-    });
-    dump_strata(kGradientLevelDelta, level, s.gradient_levels.back().delta);
-    dump_strata(kGradientLevelNorm, level, s.gradient_levels.back().norm);
-    dump_strata(kGradientLevelLuminance, level, s.gradient_levels.back().luminance);
-    dump_strata(kGradientLevelVariance, level, s.gradient_levels.back().variance);
-  }
-  // 3. lambda and alpha_i [ASVGF18 Eq. 14-15, Sec. 3.5].
-  const GradientValues& reconstructed = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
-  time_pass("adaptive_alpha", [&] {
-    s.adaptive = adaptive_alpha_pass(reconstructed, s_size, w, h, p.alpha, options_.asvgf.alpha_max_radius);
-  });
-  dump_strata(kLambda, -1, s.adaptive.lambda);
-  dump_layer(dump, kAlpha, name, -1, s.adaptive.alpha);
-}
-
 std::optional<TemporalAdaptive> SvgfFilter::temporal_adaptive(const Stream& s) const {
   if (!options_.adaptive) return std::nullopt;
-  return TemporalAdaptive{&s.adaptive.lambda_max, options_.asvgf.history_rule == 0};
+  return s.asvgf.temporal(options_.asvgf);
 }
 
-const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name) {
+const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance,
+                                          const std::string& name) {
   const SvgfParams& p = options_.svgf;
   s.noisy = std::move(noisy);
-  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5].
-  if (options_.adaptive) adaptive_alpha_stream(s, dump, name);
+  // 0. A-SVGF: the per-pixel alpha from this frame's gradient samples [ASVGF18 Sec. 3.4, 3.5] (filters/asvgf/asvgf.h),
+  //    its passes logged beside SVGF's.
+  if (options_.adaptive)
+    s.asvgf.filter(s.noisy, std::move(prev_luminance), gradient_samples_, surface_, p, options_.asvgf, name,
+                   [this](const std::string& pass, const std::function<void()>& run) { time_pass(pass, run); }, log_);
   // 1. Temporal accumulation of colour and luminance moments [SVGF17 Sec. 4.1, 4.2]. Without it (EAW,
   //    "none") every frame is a first frame: the temporal pass then returns its input with n = 1.
   s.seen_history = options_.temporal ? std::move(s.history) : TemporalHistory();
   const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
   time_pass("temporal", [&] { s.temporal = temporal_pass(s.noisy, surface_, s.seen_history, p, adaptive ? &*adaptive : nullptr); });
-  dump_layer(dump, kTemporal, name, -1, s.temporal.color);
-  dump_layer(dump, kMoment1, name, -1, s.temporal.moment1);
-  dump_layer(dump, kMoment2, name, -1, s.temporal.moment2);
-  dump_layer(dump, kHistoryLength, name, -1, s.temporal.length);
+  log_pass("temporal", name)
+      .writes(kTemporal, s.temporal.color)
+      .writes(kMoment1, s.temporal.moment1)
+      .writes(kMoment2, s.temporal.moment2)
+      .writes(kHistoryLength, s.temporal.length)
+      .pixel([this, &s, adaptive](int x, int y, Probe* probe) {
+        temporal_pixel(s.noisy, surface_, s.seen_history, options_.svgf, x, y, probe, adaptive ? &*adaptive : nullptr);
+      });
 
   // 2. The spatial filter, level by level: SVGF's variance-guided a-trous [Sec. 4.2-4.4] or EAW. Level i
   //    reads level i - 1's output (Stream::level_input_color).
@@ -106,14 +81,27 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
   int history_level = -1;  // which level's output becomes the colour history; -1: the temporal output
   if (options_.spatial == SpatialFilter::Atrous) {
     time_pass("variance", [&] { s.variance = variance_pass(s.temporal, surface_, p); });
-    dump_layer(dump, kVariance, name, -1, s.variance);
+    log_pass("variance", name)
+        .writes(kVariance, s.variance)
+        .writes(kVarianceSpatial, variance_spatial_plane(s.temporal.length, surface_.mesh, p))  // for the dump alone
+        .pixel([this, &s](int x, int y, Probe* probe) { variance_pixel(s.temporal, surface_, options_.svgf, x, y, probe); });
     for (int level = 0; level < p.atrous_levels; ++level) {
       time_pass("atrous", [&] {
         s.levels.push_back(atrous_level(s.level_input_color(level), s.level_input_variance(level), surface_, level, p));
       });
-      dump_layer(dump, kLevel, name, level, s.levels.back().color);
-      dump_layer(dump, kLevelVariance, name, level, s.levels.back().variance);
-      dump_layer(dump, kLevelPrefiltered, name, level, s.levels.back().prefiltered_variance);
+      const AtrousOutput& out = s.levels.back();
+      // The a-trous level computes the prefilter of its input variance itself [SVGF17 Eq. 5]; probed on its own.
+      log_pass("prefilter", name, level).writes(kLevelPrefiltered, out.prefiltered_variance)
+          .pixel([&s, level](int x, int y, Probe* probe) {
+            prefilter_variance_pixel(s.level_input_variance(level), x, y, probe);
+          });
+      log_pass("atrous", name, level)
+          .writes(kLevel, out.color)
+          .writes(kLevelVariance, out.variance)
+          .pixel([this, &s, level](int x, int y, Probe* probe) {
+            atrous_pixel(s.level_input_color(level), s.level_input_variance(level),
+                         s.levels[size_t(level)].prefiltered_variance, surface_, level, options_.svgf, x, y, probe);
+          });
     }
     // The first level's output is fed back as the colour history [Sec. 4.3].
     if (p.history_level < p.atrous_levels) history_level = p.history_level;
@@ -122,11 +110,15 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
       time_pass("eaw", [&] {
         s.eaw_levels.push_back(eaw_level(s.level_input_color(level), position_, surface_, level, options_.eaw));
       });
-      dump_layer(dump, kLevel, name, level, s.eaw_levels.back());
+      log_pass("eaw", name, level).writes(kLevel, s.eaw_levels.back()).pixel([this, &s, level](int x, int y, Probe* probe) {
+        eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, probe);
+      });
     }
     if (options_.eaw.levels > 0) history_level = 0;
   }
-  if (options_.spatial != SpatialFilter::None) dump_layer(dump, kFiltered, name, -1, s.spatial_result());
+  // The stream's result: the last level's output (the temporal output when no level ran).
+  if (options_.spatial != SpatialFilter::None)
+    log_pass(options_.spatial == SpatialFilter::Atrous ? "atrous" : "eaw", name).writes(kFiltered, s.spatial_result());
   // 2'. a-eaw: the (adaptive) temporal EMA of the spatial filter's output, with its own history, as A-SVGF puts
   //     its adaptive temporal filter after a per-frame denoiser (A-RAE) [ASVGF18 Sec. 4, Fig. 6] [ASVGF18 Eq. 1].
   s.ema_enabled = options_.ema_after_spatial;
@@ -135,7 +127,10 @@ const RgbPlane& SvgfFilter::filter_stream(Stream& s, RgbPlane noisy, Frame* dump
     time_pass("ema", [&] {
       s.ema = temporal_pass(s.spatial_result(), surface_, s.seen_ema_history, p, adaptive ? &*adaptive : nullptr);
     });
-    dump_layer(dump, kEma, name, -1, s.ema.color);
+    log_pass("ema", name).writes(kEma, s.ema.color).pixel([this, &s, adaptive](int x, int y, Probe* probe) {
+      temporal_pixel(s.spatial_result(), surface_, s.seen_ema_history, options_.svgf, x, y, probe,
+                     adaptive ? &*adaptive : nullptr);
+    });
     s.ema_history = {s.ema.color, s.ema.moment1, s.ema.moment2, s.ema.length, surface_};
   }
 
@@ -153,11 +148,7 @@ InputChannels svgf_input_channels(const SvgfOptions& options) {
       common_input_channels({"direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B"});
   if (options.spatial == SpatialFilter::Eaw)
     for (const char* axis : {"position.X", "position.Y", "position.Z"}) c.floats.push_back(axis);
-  if (options.adaptive) {  // the gradient samples of trace/gradients.h
-    c.floats.push_back("gradient.prev_direct");
-    c.floats.push_back("gradient.prev_indirect");
-    c.uints.push_back("gradient.source");
-  }
+  if (options.adaptive) add_gradient_inputs(c);  // the gradient samples of trace/gradients.h
   return c;
 }
 
@@ -173,29 +164,45 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
-  if (options_.adaptive) {
-    // The stratum size the gradient samples were made with, from the render's header (trace/gradients.h).
-    stratum_size_ = frame_stratum_size(in, options_.name);
-    gradient_source_ = in.uint_channel("gradient.source");
-    direct_.prev_luminance = in.float_channel("gradient.prev_direct");
-    indirect_.prev_luminance = in.float_channel("gradient.prev_indirect");
-  }
-  // The dump receives planes of this frame's size.
-  if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
+  // A-SVGF: the gradient samples, and the stratum size they were made with (the render's header, trace/gradients.h).
+  if (options_.adaptive) gradient_samples_ = GradientSamples::from_frame(in, options_.name);
+  log_.begin(in.width(), in.height());
 
-  // The two streams are filtered separately [SVGF17 Sec. 3].
-  const RgbPlane& direct = filter_stream(direct_, rgb_plane(in, "direct"), dump, "direct");
-  const RgbPlane& indirect = filter_stream(indirect_, rgb_plane(in, "indirect"), dump, "indirect");
+  const auto prev_luminance = [&](const char* stream) {  // A-SVGF: gradient.prev_<stream>
+    return options_.adaptive ? in.float_channel("gradient.prev_" + std::string(stream)) : FloatPlane();
+  };
+  if (options_.svgf.streams == 2) {
+    // The two streams are filtered separately [SVGF17 Sec. 3].
+    filtered_[0] = &filter_stream(direct_, rgb_plane(in, "direct"), prev_luminance("direct"), "direct");
+    filtered_[1] = &filter_stream(indirect_, rgb_plane(in, "indirect"), prev_luminance("indirect"), "indirect");
+  } else {
+    // One stream, direct + indirect, with one gradient [ASVGF18 Sec. 4]: luminance is linear, so the previous
+    // frame's luminance of the sum is the sum of the two (the samples' albedo divides out of both alike).
+    const OneStream one = one_stream(in, options_.adaptive);
+    filtered_[0] = &filter_stream(direct_, one.illumination, one.prev_luminance, kCombinedStream);
+    no_light_ = RgbPlane(in.width(), in.height());
+    filtered_[1] = &no_light_;
+  }
   // Remodulate, recombine, tone map, TAA [SVGF17 Sec. 3].
-  time_pass("modulate", [&] { color_ = remodulate(direct, indirect, albedo_, emission_); });
+  time_pass("modulate", [&] { color_ = remodulate(*filtered_[0], *filtered_[1], albedo_, emission_); });
+  log_pass("modulate").pixel([this](int x, int y, Probe* probe) {
+    remodulate_pixel(filtered_[0]->at(x, y), filtered_[1]->at(x, y), albedo_.at(x, y), emission_.at(x, y), probe);
+  });
   time_pass("tonemap", [&] { tonemapped_ = tonemap(color_, options_.tonemap); });
+  log_pass("tonemap").writes(kTonemapped, tonemapped_).pixel([this](int x, int y, Probe* probe) {
+    tonemap_pixel(color_.at(x, y), options_.tonemap, probe);
+  });
   seen_taa_history_ = taa_history_;
-  if (options_.taa && taa_history_.width == in.width())
+  if (options_.taa && taa_history_.width == in.width()) {  // TAA's first frame passes its input on
     time_pass("taa", [&] { display_ = taa_pass(tonemapped_, taa_history_, surface_.motion, options_.taa_params); });
-  else
+    log_pass("taa").pixel([this](int x, int y, Probe* probe) {
+      taa_pixel(tonemapped_, seen_taa_history_, surface_.motion, x, y, options_.taa_params, TaaJitter{}, probe);
+    });
+  } else {
     display_ = tonemapped_;
+  }
   taa_history_ = display_;
-  dump_layer(dump, kTonemapped, {}, -1, tonemapped_);
+  if (dump) log_.dump(*dump);
 
   Frame out(in.width(), in.height());
   out.source = in.source;
@@ -204,101 +211,48 @@ Frame SvgfFilter::filter(const Frame& in, Frame* dump) {
   return out;
 }
 
-const SvgfFilter::Stream& SvgfFilter::stream(const std::string& name) const {
-  if (name == "direct") return direct_;
-  if (name == "indirect") return indirect_;
-  throw Error("--stream '" + name + "' is not direct or indirect");
+std::vector<std::string> svgf_streams(const SvgfParams& params) {
+  if (params.streams == 1) return {kCombinedStream};
+  return {"direct", "indirect"};
 }
 
-std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options) {
-  std::vector<const PassDecl*> passes;
-  if (options.adaptive)
-    for (const char* name : {"gradient", "gradient_atrous", "adaptive_alpha"}) passes.push_back(&find_pass(name));
-  passes.push_back(&find_pass("temporal"));
-  if (options.spatial == SpatialFilter::Atrous)
-    for (const char* name : {"variance", "prefilter", "atrous"}) passes.push_back(&find_pass(name));
-  if (options.spatial == SpatialFilter::Eaw) passes.push_back(&find_pass("eaw"));
-  if (options.ema_after_spatial) passes.push_back(&find_pass("ema"));
-  passes.push_back(&find_pass("modulate"));
-  passes.push_back(&find_pass("tonemap"));
-  if (options.taa) passes.push_back(&find_pass("taa"));
+OneStream one_stream(const Frame& in, bool adaptive) {
+  OneStream one{rgb_plane(in, "direct"), FloatPlane()};
+  const RgbPlane indirect = rgb_plane(in, "indirect");
+  for (size_t i = 0; i < one.illumination.data.size(); ++i) one.illumination.data[i] += indirect.data[i];
+  if (adaptive) {  // gradient.prev_direct + gradient.prev_indirect
+    one.prev_luminance = in.float_channel("gradient.prev_direct");
+    const FloatPlane& prev_indirect = in.float_channel("gradient.prev_indirect");
+    for (size_t i = 0; i < one.prev_luminance.data.size(); ++i) one.prev_luminance.data[i] += prev_indirect.data[i];
+  }
+  return one;
+}
+
+std::vector<PassUse> svgf_passes(const SvgfOptions& options) {
+  std::vector<PassUse> passes;
+  if (options.adaptive) passes = asvgf_passes(options.asvgf);
+  passes.push_back({&find_pass("temporal")});
+  if (options.spatial == SpatialFilter::Atrous) {
+    passes.push_back({&find_pass("variance")});
+    passes.push_back({&find_pass("prefilter"), options.svgf.atrous_levels});
+    passes.push_back({&find_pass("atrous"), options.svgf.atrous_levels});
+  }
+  if (options.spatial == SpatialFilter::Eaw) passes.push_back({&find_pass("eaw"), options.eaw.levels});
+  if (options.ema_after_spatial) passes.push_back({&find_pass("ema")});
+  passes.push_back({&find_pass("modulate")});
+  passes.push_back({&find_pass("tonemap")});
+  if (options.taa) passes.push_back({&find_pass("taa")});
   return passes;
 }
 
 std::vector<std::string> svgf_dump_channels(const SvgfOptions& options) {
-  const int levels = options.spatial == SpatialFilter::Atrous ? options.svgf.atrous_levels
-                     : options.spatial == SpatialFilter::Eaw  ? options.eaw.levels
-                                                              : 0;
-  std::vector<std::string> channels;
-  for (const PassDecl* pass : svgf_passes(options))
-    for (const LayerDecl* layer : pass->writes)
-      if (layer->use == LayerUse::Dump)
-        for (std::string& channel :
-             expand_layer(*layer, pass->name == "gradient_atrous" ? options.asvgf.gradient_levels : levels))
-          if (std::find(channels.begin(), channels.end(), channel) == channels.end())
-            channels.push_back(std::move(channel));
-  return channels;
+  return dump_channels_of(svgf_passes(options), svgf_streams(options.svgf));
 }
 
 std::vector<std::string> SvgfFilter::probe_passes() const {
   std::vector<std::string> names;
-  for (const PassDecl* pass : svgf_passes(options_)) names.emplace_back(pass->name);
+  for (const PassUse& use : svgf_passes(options_)) names.emplace_back(use.pass->name);
   return names;
-}
-
-Probe SvgfFilter::probe(const std::string& pass, int x, int y, const std::string& stream_name, int level) const {
-  if (!inside(surface_.depth, x, y))
-    throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
-                std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
-  const std::vector<std::string> runs = probe_passes();
-  if (std::find(runs.begin(), runs.end(), pass) == runs.end() ||
-      (pass == "taa" && seen_taa_history_.width != surface_.width())) {  // TAA's first frame passes its input on
-    std::string known;
-    for (const std::string& name : runs) known += (known.empty() ? "" : ", ") + name;
-    throw Error("--pass '" + pass + "' cannot be probed for method " + options_.name + " on this frame (passes: " +
-                known + ")");
-  }
-  const Stream& s = stream(stream_name);
-  if (find_pass(pass).scope == PassScope::StreamLevel) {
-    const size_t count = pass == "eaw"               ? s.eaw_levels.size()
-                         : pass == "gradient_atrous" ? s.gradient_levels.size()
-                                                     : s.levels.size();
-    if (level < 0 || size_t(level) >= count)
-      throw Error("--level " + std::to_string(level) + " is not one of the " + std::to_string(count) + " levels run");
-  }
-
-  // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
-  const SvgfParams& p = options_.svgf;
-  Probe probe;
-  const int sx = stratum_size_ > 0 ? x / stratum_size_ : 0, sy = stratum_size_ > 0 ? y / stratum_size_ : 0;
-  if (pass == "gradient")
-    gradient_stratum(s.noisy, gradient_source_, s.prev_luminance, surface_, stratum_size_, sx, sy, &probe);
-  if (pass == "gradient_atrous") {
-    const GradientValues& in = level == 0 ? s.gradient.values : s.gradient_levels[size_t(level - 1)];
-    gradient_atrous_pixel(in, prefilter_variance(in.variance), s.gradient, level, p, sx, sy, &probe);
-  }
-  if (pass == "adaptive_alpha") {
-    const GradientValues& g = s.gradient_levels.empty() ? s.gradient.values : s.gradient_levels.back();
-    adaptive_alpha_pixel(g, stratum_size_, p.alpha, options_.asvgf.alpha_max_radius, x, y, &probe);
-  }
-  const std::optional<TemporalAdaptive> adaptive = temporal_adaptive(s);
-  if (pass == "temporal")
-    temporal_pixel(s.noisy, surface_, s.seen_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);
-  if (pass == "ema")
-    temporal_pixel(s.spatial_result(), surface_, s.seen_ema_history, p, x, y, &probe, adaptive ? &*adaptive : nullptr);
-  if (pass == "variance") variance_pixel(s.temporal, surface_, p, x, y, &probe);
-  if (pass == "prefilter") prefilter_variance_pixel(s.level_input_variance(level), x, y, &probe);
-  if (pass == "atrous")
-    atrous_pixel(s.level_input_color(level), s.level_input_variance(level), s.levels[size_t(level)].prefiltered_variance,
-                 surface_, level, p, x, y, &probe);
-  if (pass == "eaw") eaw_pixel(s.level_input_color(level), position_, surface_, level, options_.eaw, x, y, &probe);
-  if (pass == "modulate")
-    remodulate_pixel(direct_.filtered().at(x, y), indirect_.filtered().at(x, y), albedo_.at(x, y), emission_.at(x, y),
-                     &probe);
-  if (pass == "tonemap") tonemap_pixel(color_.at(x, y), options_.tonemap, &probe);
-  if (pass == "taa")
-    taa_pixel(tonemapped_, seen_taa_history_, surface_.motion, x, y, options_.taa_params, TaaJitter{}, &probe);
-  return probe;
 }
 
 }  // namespace rtdr

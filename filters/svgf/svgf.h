@@ -4,17 +4,13 @@
 //   the level `history_level` becoming next frame's colour history;
 // then remodulation and recombination (modulate.h), tone mapping (tonemap.h) and TAA (filters/taa/taa.h).
 // With `ema_after_spatial` (a-eaw) a temporal EMA follows the spatial filter instead of preceding it.
-// With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first turns the frame's gradient samples into a per-pixel
-// alpha: gradient image (filters/asvgf/gradient_image.h) -> reconstruction iterations (gradient_atrous.h) ->
-// lambda and alpha_i (adaptive_alpha.h), which the temporal accumulation uses in place of the constant alpha.
+// With `adaptive` (A-SVGF [ASVGF18 Sec. 4]) each stream first runs A-SVGF's passes (filters/asvgf/asvgf.h, which
+// puts them together), whose per-pixel alpha_i the temporal accumulation uses in place of the constant alpha.
 // The same class runs the baselines of filters/baselines/ by switching stages off or swapping the spatial
 // filter, so every method shares the exact same passes (README.md in this folder lists them).
 #pragma once
 
-#include "filters/asvgf/adaptive_alpha.h"
-#include "filters/asvgf/asvgf_params.h"
-#include "filters/asvgf/gradient_atrous.h"
-#include "filters/asvgf/gradient_image.h"
+#include "filters/asvgf/asvgf.h"
 #include "filters/baselines/eaw.h"
 #include "filters/method.h"
 #include "filters/passes.h"
@@ -25,6 +21,7 @@
 #include "filters/svgf/tonemap.h"
 #include "filters/taa/taa.h"
 
+#include <deque>
 #include <optional>
 
 namespace rtdr {
@@ -47,13 +44,26 @@ struct SvgfOptions {
   TaaParams taa_params;
 };
 
+// The illumination streams a filter with `params` runs, by their names in the dump's layers (filters/passes.h):
+// "direct" and "indirect" filtered apart [SVGF17 Sec. 3], or with streams = 1 "combined", their sum filtered as one
+// stream, with one gradient [ASVGF18 Sec. 4: "we do not separate direct and indirect illumination"].
+std::vector<std::string> svgf_streams(const SvgfParams& params);
+
+// streams = 1: the frame's direct + indirect illumination, and with `adaptive` (A-SVGF) gradient.prev_direct +
+// gradient.prev_indirect, the previous luminance of the sum. The Vulkan pipeline filters the same (gpu/svgf_vulkan.h).
+struct OneStream {
+  RgbPlane illumination;
+  FloatPlane prev_luminance;
+};
+OneStream one_stream(const Frame& in, bool adaptive);
+
 // The channels a filter with `options` reads from each input frame: the G-buffer (SurfacePlanes::from_frame),
 // albedo, emission, both illumination streams, and `position` for the EAW spatial filter. The Vulkan ports read
 // the same (gpu/svgf_vulkan.h).
 InputChannels svgf_input_channels(const SvgfOptions& options);
 // The passes a filter with `options` runs, in order (declared in filters/passes.h), and every channel its
-// dump holds: each pass's dump layers for both streams and every level it runs.
-std::vector<const PassDecl*> svgf_passes(const SvgfOptions& options);
+// dump holds: each pass's dump layers for each stream (svgf_streams) and every level it runs.
+std::vector<PassUse> svgf_passes(const SvgfOptions& options);
 std::vector<std::string> svgf_dump_channels(const SvgfOptions& options);
 
 class SvgfFilter : public Method {
@@ -62,7 +72,6 @@ class SvgfFilter : public Method {
   std::string name() const override { return options_.name; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
-  Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }
@@ -72,18 +81,17 @@ class SvgfFilter : public Method {
   struct Stream {
     TemporalHistory history;          // colour history, moments, history length, previous G-buffer
     RgbPlane noisy;                   // this frame's input
-    FloatPlane prev_luminance;        // A-SVGF: gradient.prev_<stream>, the previous frame's luminance at j
-    GradientImage gradient;           // A-SVGF: the gradient image
-    std::vector<GradientValues> gradient_levels;  // each reconstruction iteration's output
-    AdaptiveAlpha adaptive;           // lambda and alpha_i
+    AsvgfStream asvgf;                // A-SVGF's passes and what they made (filters/asvgf/asvgf.h)
     TemporalHistory ema_history, seen_ema_history;  // ema_after_spatial: the EMA's history, and what it read
     TemporalOutput ema;               // and its output
     bool ema_enabled = false;
     TemporalHistory seen_history;     // the history the temporal pass read this frame
     TemporalOutput temporal;          // its output
     FloatPlane variance;              // the variance estimate
-    std::vector<AtrousOutput> levels;         // each a-trous level's output (prefiltered variance included)
-    std::vector<RgbPlane> eaw_levels;         // or each EAW level's output
+    // Each a-trous level's output (prefiltered variance included), or each EAW level's output. Deques, whose
+    // elements stay where they are as levels are added: the pass log points at them (filters/pass_log.h).
+    std::deque<AtrousOutput> levels;
+    std::deque<RgbPlane> eaw_levels;
     // The input of level i is the output of level i - 1; level 0 reads the temporal output.
     const RgbPlane& level_input_color(int level) const;
     const FloatPlane& level_input_variance(int level) const;
@@ -91,20 +99,19 @@ class SvgfFilter : public Method {
     const RgbPlane& filtered() const;        // the stream's result: the EMA's output, else spatial_result()
   };
 
-  // Runs one stream's passes; `name` is the stream, "direct" or "indirect", for the dump's layer names.
-  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, Frame* dump, const std::string& name);
-  // A-SVGF's gradient passes of one stream [ASVGF18 Sec. 3.4, 3.5].
-  void adaptive_alpha_stream(Stream& s, Frame* dump, const std::string& name);
+  // Runs one stream's passes and logs them; `name` is the stream, "direct", "indirect" or "combined", for the
+  // layer names. `prev_luminance` is its gradient.prev_<stream> with A-SVGF (else empty).
+  const RgbPlane& filter_stream(Stream& s, RgbPlane noisy, FloatPlane prev_luminance, const std::string& name);
   // What the temporal pass of stream `s` reads of A-SVGF (null without it).
   std::optional<TemporalAdaptive> temporal_adaptive(const Stream& s) const;
-  const Stream& stream(const std::string& name) const;
 
   SvgfOptions options_;
   Stream direct_, indirect_;
   SurfacePlanes surface_, prev_surface_;
-  UIntPlane gradient_source_;  // A-SVGF: gradient.source
-  int stratum_size_ = 0;       // A-SVGF: the render's stratum size
+  GradientSamples gradient_samples_;  // A-SVGF: this frame's gradient samples
   RgbPlane albedo_, emission_, position_;
+  RgbPlane no_light_;                 // streams = 1: the empty second stream that modulate adds (all 0)
+  const RgbPlane* filtered_[2] = {};  // what modulate read this frame: the direct (or combined) and indirect results
   RgbPlane color_, tonemapped_, taa_history_, seen_taa_history_, display_;
 };
 

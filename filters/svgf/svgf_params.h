@@ -18,7 +18,8 @@
   X(int, kernel_size, 5, 3, 5, "", "5: the 5x5 B3 kernel of SVGF17 Eq. 1; 3: the 3x3 box of ASVGF18 Sec. 4")      \
   X(int, history_level, 0, 0, 9, "", "SVGF17 Sec. 4.3: the first level's output is the colour history")          \
   X(int, variance_min_history, 4, 0, 1000, "", "SVGF17 Sec. 4.2: '<4 frames after a disocclusion' -> 7x7 spatial")\
-  X(int, max_history, 0, 0, 100000, "n_max", "0 = none; Falcor-style alpha = max(alpha, 1/n) (a deviation)")
+  X(int, max_history, 0, 0, 100000, "n_max", "0 = none; Falcor-style alpha = max(alpha, 1/n) (a deviation)")     \
+  X(int, streams, 2, 1, 2, "", "2: direct and indirect filtered apart (SVGF17 Sec. 3); 1: their sum, one stream, one gradient (ASVGF18 Sec. 4)")
 
 #ifdef __cplusplus
 #pragma once

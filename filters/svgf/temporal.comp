@@ -6,9 +6,10 @@
 //   in:  bindings 0 noisy illumination (both streams); 1-4 current surface, depth gradient, mesh id, motion;
 //        5 history illumination (both streams), 6-7 history moments (direct, indirect); 8-9 previous surface, mesh id.
 //   out: bindings 10 illumination (C', 0) (both streams), 11-12 moments (mu1', mu2', n, 0) (direct, indirect).
-//   A-SVGF (push.adaptive): bindings 13-14 (lambda_max, alpha_i) per pixel of the direct and the indirect stream
-//   (filters/asvgf/adaptive_alpha.comp); alpha and alpha_mu become (1 - lambda) alpha + lambda [ASVGF18 Eq. 15],
-//   and with push.restart_history the history length falls to (1 - lambda) n_{i-1} [ASVGF18 Sec. 4].
+//   A-SVGF (push.adaptive): bindings 13-14 (lambda_max, alpha_i, alpha_mu_i, 0) per pixel of the direct and the
+//   indirect stream, as filters/asvgf/adaptive_alpha.comp makes them [ASVGF18 Eq. 15]: alpha_i and alpha_mu_i
+//   replace alpha and alpha_mu, and with push.restart_history the history length falls to (1 - lambda) n_{i-1}
+//   [ASVGF18 Sec. 4].
 //   Layout: planes_shared.h and temporal_shared.h.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -34,8 +35,8 @@ RTDR_INPUT_UINT(9, prev_mesh)
 RTDR_OUTPUT_ILLUMINATION(10, out_illumination)
 layout(std430, set = 0, binding = 11) writeonly buffer OutMomentsDirect { vec4 out_moments_direct[]; };
 layout(std430, set = 0, binding = 12) writeonly buffer OutMomentsIndirect { vec4 out_moments_indirect[]; };
-layout(std430, set = 0, binding = 13) readonly buffer LambdaDirect { vec2 lambda_direct[]; };
-layout(std430, set = 0, binding = 14) readonly buffer LambdaIndirect { vec2 lambda_indirect[]; };
+layout(std430, set = 0, binding = 13) readonly buffer AdaptiveDirect { vec4 adaptive_direct[]; };
+layout(std430, set = 0, binding = 14) readonly buffer AdaptiveIndirect { vec4 adaptive_indirect[]; };
 
 layout(push_constant) uniform Push { TemporalPush push; };
 
@@ -194,22 +195,23 @@ TemporalPixel disocclusion(vec3 C, float l) {
   return TemporalPixel(C, l, l2, 1.0);
 }
 
-// alpha_i(p) = (1 - lambda(p)) alpha + lambda(p) [ASVGF18 Eq. 15] (filters/asvgf/adaptive_alpha.cpp); lambda = 0
-// gives alpha exactly, SVGF's constant weight.
-float adaptive_alpha(float alpha, float lambda) {
-  precise float alpha_i = (1.0 - lambda) * alpha + lambda;
-  return alpha_i;
-}
+// One stream's temporal weights: SVGF's constant alpha and alpha_mu, or A-SVGF's alpha_i and alpha_mu_i with the
+// lambda they were made from (TemporalAdaptive, temporal.h).
+struct Weights {
+  float lambda;
+  float alpha;
+  float alpha_mu;
+};
 
-// The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp.
-// With A-SVGF's lambda, alpha and alpha_mu become alpha_i of [ASVGF18 Eq. 15] first.
-TemporalPixel accumulate(vec3 C, float l, HistorySample h, float lambda) {
+// The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp, with
+// the weights alpha (colour) and alpha_mu (moments): the table's, or A-SVGF's alpha_i and alpha_mu_i.
+TemporalPixel accumulate(vec3 C, float l, HistorySample h, Weights weights) {
   // n_i = n_{i-1} + 1, capped at n_max when the table sets one (max_history > 0).
   precise float n = h.len + 1.0;
   if (frame.max_history > 0u) n = min(n, float(frame.max_history));
   // alpha_eff = max(alpha, 1/n): a running mean while 1/n > alpha, then the paper's EMA (a deviation, temporal.h).
-  const float alpha = max(adaptive_alpha(frame.alpha, lambda), 1.0 / n);
-  const float alpha_mu = max(adaptive_alpha(frame.alpha_moments, lambda), 1.0 / n);
+  const float alpha = max(weights.alpha, 1.0 / n);
+  const float alpha_mu = max(weights.alpha_mu, 1.0 / n);
   // C'_i = alpha C_i + (1 - alpha) C'_{i-1}  [SVGF17 Sec. 4.1, unnumbered equation], A-SVGF's [ASVGF18 Eq. 1]
   precise vec3 color = alpha * C + (1.0 - alpha) * h.color;
   // mu1'_i = alpha_mu l + (1 - alpha_mu) mu1'_{i-1}  [SVGF17 Sec. 4.2, accumulated like the colour]
@@ -220,8 +222,8 @@ TemporalPixel accumulate(vec3 C, float l, HistorySample h, float lambda) {
 }
 
 // One stream's result from its noisy colour C and its back-projected history (found: not a disocclusion), with
-// A-SVGF's lambda (0 for SVGF).
-TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h, float lambda) {
+// its weights.
+TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h, Weights weights) {
   // l: the luminance of the noisy colour; l and l^2 are its first two raw moments [SVGF17 Sec. 4.2].
   const float l = luminance(C);
   if (!found) return disocclusion(C, l);
@@ -230,10 +232,10 @@ TemporalPixel temporal_stream(vec3 C, bool found, HistorySample h, float lambda)
   h.len = rounded;
   // A-SVGF: a dropped history restarts, n_{i-1} <- (1 - lambda) n_{i-1} [ASVGF18 Sec. 4] (temporal.h).
   if (frame.restart_history != 0u) {
-    precise float restarted = h.len * (1.0 - lambda);
+    precise float restarted = h.len * (1.0 - weights.lambda);
     h.len = restarted;
   }
-  return accumulate(C, l, h, lambda);
+  return accumulate(C, l, h, weights);
 }
 
 void write(int i, TemporalPixel direct, TemporalPixel indirect) {
@@ -259,9 +261,12 @@ void main() {
   Histories h;
   const bool found = backproject_history(pixel.x, pixel.y, c, h);
   const Illumination C = noisy(i);
-  // lambda_max per stream [ASVGF18 Sec. 3.5], or 0: SVGF's constant alpha.
+  // Per stream: A-SVGF's (lambda_max, alpha_i, alpha_mu_i) [ASVGF18 Eq. 15], or SVGF's constant weights.
+  const Weights constant = Weights(0.0, frame.alpha, frame.alpha_moments);
   const bool adaptive = frame.adaptive != 0u;
-  const float lambda_d = adaptive ? lambda_direct[i].x : 0.0, lambda_i = adaptive ? lambda_indirect[i].x : 0.0;
-  write(i, temporal_stream(C.stream[0].rgb, found, h.stream[0], lambda_d),
-        temporal_stream(C.stream[1].rgb, found, h.stream[1], lambda_i));
+  const vec4 a_d = adaptive ? adaptive_direct[i] : vec4(0.0), a_i = adaptive ? adaptive_indirect[i] : vec4(0.0);
+  const Weights direct = adaptive ? Weights(a_d.x, a_d.y, a_d.z) : constant;
+  const Weights indirect = adaptive ? Weights(a_i.x, a_i.y, a_i.z) : constant;
+  write(i, temporal_stream(C.stream[0].rgb, found, h.stream[0], direct),
+        temporal_stream(C.stream[1].rgb, found, h.stream[1], indirect));
 }

@@ -5,7 +5,6 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "filters/asvgf/adaptive_alpha.h"
 
 #include <algorithm>
 #include <cmath>
@@ -133,23 +132,18 @@ TemporalPixel disocclusion(glm::vec3 C, float l, Probe* probe) {
   return out;
 }
 
-// The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp.
-// With A-SVGF's lambda, alpha and alpha_mu become alpha_i of [ASVGF18 Eq. 15] first.
-TemporalPixel accumulate(glm::vec3 C, float l, const HistorySample& h, const SvgfParams& params, float lambda,
-                         Probe* probe) {
+// The exponential moving averages of colour and moments [SVGF17 Sec. 4.1, 4.2] with the history-length ramp, with
+// the weights alpha (colour) and alpha_mu (moments): the table's, or A-SVGF's alpha_i and alpha_mu_i.
+TemporalPixel accumulate(glm::vec3 C, float l, const HistorySample& h, const SvgfParams& params, float alpha_c,
+                         float alpha_m, Probe* probe) {
   note_group(probe, "accumulate");
   // n_i = n_{i-1} + 1, capped at n_max when the table sets one (max_history > 0).
   float n = h.length + 1.0f;
   if (params.max_history > 0) n = std::min(n, float(params.max_history));
   note(probe, "n_i", n);
   // alpha_eff = max(alpha, 1/n): a running mean while 1/n > alpha, then the paper's EMA (a deviation, temporal.h).
-  const float alpha_i = adaptive_alpha(params.alpha, lambda), alpha_mu_i = adaptive_alpha(params.alpha_moments, lambda);
-  if (lambda > 0.0f) {
-    note(probe, "lambda", lambda, "[ASVGF18 Eq. 14], the maximum over 3x3 strata");
-    note(probe, "alpha_i", alpha_i, "[ASVGF18 Eq. 15] (1 - lambda) alpha + lambda");
-  }
-  const float alpha = std::max(alpha_i, 1.0f / n);
-  const float alpha_mu = std::max(alpha_mu_i, 1.0f / n);
+  const float alpha = std::max(alpha_c, 1.0f / n);
+  const float alpha_mu = std::max(alpha_m, 1.0f / n);
   note(probe, "alpha_eff", alpha, "[SVGF17 Sec. 4.1] alpha, Falcor's max(alpha, 1/n)");
   note(probe, "alpha_mu_eff", alpha_mu, "[SVGF17 Sec. 4.2] moments' alpha, max(alpha_mu, 1/n)");
   TemporalPixel out;
@@ -255,21 +249,32 @@ TemporalPixel temporal_pixel(const RgbPlane& noisy, const SurfacePlanes& cur, co
   // may go either way at .5.
   h.length = std::floor(h.length + 0.5f);
   note(probe, "n_{i-1}", h.length);
-  // A-SVGF: the history keeps the weight 1 - lambda, and with restart_history its length falls alike, so that a
-  // dropped history counts as a disocclusion [ASVGF18 Sec. 4] (temporal.h).
-  const float lambda = adaptive ? adaptive->lambda->at(x, y) : 0.0f;
-  if (adaptive && adaptive->restart_history) {
-    h.length *= 1.0f - lambda;
-    note(probe, "(1 - lambda) n_{i-1}", h.length, "[ASVGF18 Sec. 4] a dropped history restarts");
+  // SVGF's constant weights, or A-SVGF's per pixel (made by its adaptive_alpha pass [ASVGF18 Eq. 15]).
+  float alpha = params.alpha, alpha_mu = params.alpha_moments;
+  if (adaptive) {
+    const float lambda = adaptive->lambda->at(x, y);
+    alpha = adaptive->alpha->at(x, y);
+    alpha_mu = adaptive->alpha_moments->at(x, y);
+    note(probe, "lambda", lambda, "[ASVGF18 Eq. 14], the maximum over 3x3 strata");
+    note(probe, "alpha_i", alpha, "[ASVGF18 Eq. 15] (1 - lambda) alpha + lambda");
+    note(probe, "alpha_mu_i", alpha_mu, "[ASVGF18 Eq. 15] for the moments");
+    // The history keeps the weight 1 - lambda, and with restart_history its length falls alike, so that a dropped
+    // history counts as a disocclusion [ASVGF18 Sec. 4] (temporal.h).
+    if (adaptive->restart_history) {
+      h.length *= 1.0f - lambda;
+      note(probe, "(1 - lambda) n_{i-1}", h.length, "[ASVGF18 Sec. 4] a dropped history restarts");
+    }
   }
-  return accumulate(C, l, h, params, lambda, probe);
+  return accumulate(C, l, h, params, alpha, alpha_mu, probe);
 }
 
 TemporalOutput temporal_pass(const RgbPlane& noisy, const SurfacePlanes& cur, const TemporalHistory& prev,
                              const SvgfParams& params, const TemporalAdaptive* adaptive) {
   check_sizes(noisy, cur, prev);
-  if (adaptive && (adaptive->lambda->width != noisy.width || adaptive->lambda->height != noisy.height))
-    throw Error("temporal pass: the lambda plane is not the frame's size");
+  const auto frame_sized = [&](const FloatPlane* p) { return p && sized(*p, noisy.width, noisy.height); };
+  if (adaptive && !(frame_sized(adaptive->lambda) && frame_sized(adaptive->alpha) &&
+                    frame_sized(adaptive->alpha_moments)))
+    throw Error("temporal pass: the lambda and alpha planes are not the frame's size");
   const int w = noisy.width, h = noisy.height;
   TemporalOutput out{RgbPlane(w, h), FloatPlane(w, h), FloatPlane(w, h), FloatPlane(w, h)};
   parallel_rows(h, [&](int y) {

@@ -65,15 +65,17 @@ struct TemporalOutput {
   FloatPlane length;   // n_i
 };
 
-// A-SVGF's adaptive temporal weight, in place of the constant alpha [ASVGF18 Sec. 4]: at each pixel
-// alpha_i = (1 - lambda) alpha + lambda [ASVGF18 Eq. 15] for the colour, and the same of alpha_moments for the
-// moments, where lambda is the pixel's lambda_max (filters/asvgf/adaptive_alpha.h). With restart_history the
+// A-SVGF's adaptive temporal weights, in place of the constant alpha and alpha_mu [ASVGF18 Sec. 4]: per pixel,
+// alpha_i for the colour and alpha_mu_i for the moments, both made by A-SVGF's adaptive_alpha pass
+// (filters/asvgf/adaptive_alpha.h, [ASVGF18 Eq. 15]), and the lambda they were made from. With restart_history the
 // history length falls with the history's weight, n_{i-1} <- (1 - lambda) n_{i-1}, so that a dropped history
 // (lambda = 1) counts as a disocclusion: n = 1, and the variance is estimated spatially, as the paper says
 // ("When the history is dropped, A-SVGF performs the variance estimate spatially" [ASVGF18 Sec. 4]).
 struct TemporalAdaptive {
-  const FloatPlane* lambda = nullptr;  // per pixel
-  bool restart_history = true;         // filters/asvgf/asvgf_params.h, history_rule 0
+  const FloatPlane* lambda = nullptr;         // lambda_max per pixel
+  const FloatPlane* alpha = nullptr;          // alpha_i per pixel
+  const FloatPlane* alpha_moments = nullptr;  // alpha_mu_i per pixel
+  bool restart_history = true;                // filters/asvgf/asvgf_params.h, history_rule 0
 };
 
 // One pixel of TemporalOutput.
@@ -91,7 +93,7 @@ bool temporal_tap_consistent(const SurfacePlanes& cur, const SurfacePlanes& prev
                              glm::vec2 p_prev, const SvgfParams& params, Probe* probe = nullptr);
 
 // The golden per-pixel function. Where (x, y) sees no surface every output is 0.
-// With `adaptive`, alpha is A-SVGF's per pixel (above).
+// With `adaptive`, alpha and alpha_mu are A-SVGF's per pixel (above).
 TemporalPixel temporal_pixel(const RgbPlane& noisy, const SurfacePlanes& cur, const TemporalHistory& prev,
                              const SvgfParams& params, int x, int y, Probe* probe = nullptr,
                              const TemporalAdaptive* adaptive = nullptr);

@@ -9,8 +9,8 @@
 //   5 illumination C'_{i-1}, 6-7 moments (mu1', mu2', n) of the direct and indirect  TemporalHistory
 //   8 surface, 9 mesh id                                                             TemporalHistory::surface
 //   10 illumination C'_i, 11-12 moments, direct and indirect, written                storage buffers
-//   13-14 A-SVGF's (lambda_max, alpha_i) of the direct and the indirect stream, read   storage buffers (vec2),
-//         as filters/asvgf/adaptive_alpha.comp writes them; one unread element unless push.adaptive
+//   13-14 A-SVGF's (lambda_max, alpha_i, alpha_mu_i, 0) of the direct and the         storage buffers (vec4),
+//         indirect stream, as filters/asvgf/adaptive_alpha.comp writes them; one unread element unless push.adaptive
 #ifndef RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 #define RTDR_FILTERS_SVGF_TEMPORAL_SHARED_H
 
@@ -46,7 +46,7 @@ struct TemporalPush {
   float alpha_moments;
   float temporal_depth_relative;
   float temporal_normal_cosine;
-  RTDR_SHARED_UINT adaptive;         // 1: A-SVGF's alpha_i per pixel from bindings 13-14 [ASVGF18 Eq. 15]
+  RTDR_SHARED_UINT adaptive;         // 1: A-SVGF's alpha_i, alpha_mu_i per pixel from bindings 13-14 [ASVGF18 Eq. 15]
   RTDR_SHARED_UINT restart_history;  // 1: n_{i-1} <- (1 - lambda) n_{i-1} (TemporalAdaptive::restart_history)
 };
 

@@ -66,6 +66,15 @@ float variance_spatial_pixel(const TemporalOutput& t, const SurfacePlanes& cur, 
   return variance_from_moments(mu1, mu2, probe);
 }
 
+bool variance_is_spatial(float n, const SvgfParams& params) { return !(n >= float(params.variance_min_history)); }
+
+FloatPlane variance_spatial_plane(const FloatPlane& length, const UIntPlane& mesh, const SvgfParams& params) {
+  FloatPlane spatial(length.width, length.height);
+  for (size_t i = 0; i < spatial.data.size(); ++i)
+    spatial.data[i] = mesh.data[i] != kInvalidId && variance_is_spatial(length.data[i], params) ? 1.0f : 0.0f;
+  return spatial;
+}
+
 float variance_pixel(const TemporalOutput& t, const SurfacePlanes& cur, const SvgfParams& params, int x, int y,
                      Probe* probe) {
   note_group(probe, "variance");
@@ -75,7 +84,7 @@ float variance_pixel(const TemporalOutput& t, const SurfacePlanes& cur, const Sv
   const float n = t.length.at(x, y);
   // "Where our temporal history is limited (<4 frames after a disocclusion), we instead estimate the variance
   // spatially" [SVGF17 Sec. 4.2]; 4 is variance_min_history.
-  const bool temporal = n >= float(params.variance_min_history);
+  const bool temporal = !variance_is_spatial(n, params);
   note(probe, "n", n);
   note(probe, "temporal estimate (n >= variance_min_history)", float(temporal), "[SVGF17 Sec. 4.2]");
   if (!temporal) return variance_spatial_pixel(t, cur, params, x, y, probe);

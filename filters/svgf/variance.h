@@ -33,6 +33,12 @@
 
 namespace rtdr {
 
+// Which estimate a covered pixel with history length n takes: the spatial one where n < variance_min_history
+// [SVGF17 Sec. 4.2]. variance_pixel branches on it; the dumps show it per pixel (filter.<s>.variance.spatial).
+bool variance_is_spatial(float n, const SvgfParams& params);
+// That choice at every pixel: 1 where the 7x7 spatial estimate was taken, 0 where mu2' - mu1'^2 or no surface.
+FloatPlane variance_spatial_plane(const FloatPlane& length, const UIntPlane& mesh, const SvgfParams& params);
+
 // The golden per-pixel function: sigma'^2 at (x, y), 0 where no surface.
 float variance_pixel(const TemporalOutput& t, const SurfacePlanes& cur, const SvgfParams& params, int x, int y,
                      Probe* probe = nullptr);

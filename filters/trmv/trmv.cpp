@@ -140,41 +140,81 @@ RgbPlane bilateral(const RgbPlane& c, const SurfacePlanes& s, const TrmvWindows&
   return trmv_spatial_pass(c, s, w.shadow_radius, w.shadow_sigma, edges);
 }
 
+// A component's planes as its layers hold them: visibility travels as (V, V, V), its layers are scalar.
+PassRun& write(PassRun& run, const LayerDecl* layer, const RgbPlane& rgb) {
+  if (layer->type == LayerType::Rgb) return run.writes(*layer, rgb);
+  FloatPlane first(rgb.width, rgb.height);
+  for (size_t i = 0; i < rgb.data.size(); ++i) first.data[i] = rgb.data[i].x;
+  return run.writes(*layer, std::move(first));
+}
+
 }  // namespace
 
-const RgbPlane& TrmvFilter::filter_component(Component& c) {
+const RgbPlane& TrmvFilter::filter_component(Component& c, const std::string& name, const Layers& layers) {
   const TrmvParams& p = params_.trmv;
   // 2-3. The history along the component's motion, tested, clamped to mu +- gamma sigma, blended [TRMV21 Eq. 2,
-  // Sec. 5].
+  // Sec. 5]. (1., the spatial filter, is the component's own: prepare_visibility, _diffuse, _glossy.)
   c.seen_history = std::move(c.history);  // replaced below by this frame's
   time_pass("trmv_temporal", [&] {
     c.temporal = trmv_temporal_pass(c.filtered, surface_, c.motion, c.seen_history, c.alpha, p, params_.svgf);
   });
+  PassRun& temporal = log_pass("trmv_temporal", name);
+  write(temporal, layers.temporal, c.temporal.color);
+  write(temporal, layers.clamped, c.temporal.clamped).pixel([this, &c](int x, int y, Probe* probe) {
+    trmv_temporal_pixel(c.filtered, surface_, c.motion, c.seen_history, c.alpha, params_.trmv, params_.svgf, x, y,
+                        probe);
+  });
   // 4. The clean-up, as strong as Eq. 4 and the clamp moved the blend [TRMV21 Eq. 7-8], at its scaled window.
-  TrmvParams cleanup = p;
-  cleanup.cleanup_size = 2 * windows_.cleanup_radius + 1;
+  cleanup_params_ = p;
+  cleanup_params_.cleanup_size = 2 * windows_.cleanup_radius + 1;
   time_pass("trmv_cleanup",
-            [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, cleanup, params_.svgf); });
+            [&] { c.cleaned = trmv_cleanup_pass(c.temporal, c.alpha, surface_, cleanup_params_, params_.svgf); });
+  PassRun& cleanup = log_pass("trmv_cleanup", name);
+  if (layers.w_a) cleanup.writes(*layers.w_a, c.cleaned.w_a);
+  cleanup.writes(*layers.w_c, c.cleaned.w_c);
+  write(cleanup, layers.cleaned, c.cleaned.color).pixel([this, &c](int x, int y, Probe* probe) {
+    trmv_cleanup_weights_pixel(c.temporal, c.alpha, cleanup_params_, x, y, probe);
+  });
   // Next frame's history: before the clean-up unless asked otherwise (history_after_cleanup).
   c.history.color = p.history_after_cleanup != 0 ? c.cleaned.color : c.temporal.color;
   c.history.surface = surface_;
   return c.cleaned.color;
 }
 
-void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
+void TrmvFilter::prepare_visibility(const Frame& in) {
+  using namespace layers;
   const TrmvParams& p = params_.trmv;
   visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
   // The penumbra's width W at every in-shadow pixel [LLK*19] (shadow_filter = 1), which the splat carries.
   const bool penumbra = p.shadow_filter == 1;
+  PassRun* penumbra_run = nullptr;
   if (penumbra) {
     penumbra_inputs_ = TrmvPenumbraInputs::from_frame(in);
     time_pass("trmv_penumbra", [&] { penumbra_ = trmv_penumbra_pass(penumbra_inputs_); });
+    penumbra_run = &log_pass("trmv_penumbra", "visibility").writes(kTrmvPenumbraWidth, penumbra_.width);
+    penumbra_run->pixel([this](int x, int y, Probe* probe) {
+      float width;
+      glm::vec2 metres;
+      trmv_penumbra_pixel(penumbra_inputs_, trmv_light_diameters(penumbra_inputs_.light, penumbra_inputs_.light_id),
+                          x, y, width, metres, probe);
+    });
   }
   // The splat: m^V (and W) spread over the shadow filter's window, on each receiving surface [TRMV21 Sec. 4.1].
   splat_ = {};
   if (trmv_uses_splat(p)) {
     splat_inputs_ = trmv_splat_planes(in, surface_, penumbra ? penumbra_.width : FloatPlane());
     time_pass("trmv_splat", [&] { splat_ = trmv_splat_pass(splat_inputs_, windows_.splat_size); });
+    FloatPlane mx(in.width(), in.height()), my = mx, landed = mx;
+    for (size_t i = 0; i < mx.data.size(); ++i) {
+      mx.data[i] = splat_.motion.data[i].x;
+      my.data[i] = splat_.motion.data[i].y;
+      landed.data[i] = float(splat_.landed.data[i]);
+    }
+    log_pass("trmv_splat", "visibility")
+        .writes(kTrmvSplatX, std::move(mx))
+        .writes(kTrmvSplatY, std::move(my))
+        .writes(kTrmvSplatLanded, std::move(landed))
+        .pixel([this](int x, int y, Probe* probe) { trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, probe); });
   }
   // 1. The spatial filter: the 31x31 separable joint bilateral [TRMV21 Sec. 5], or its std per pixel and axis from
   //    the splatted penumbra (penumbra.h).
@@ -188,6 +228,16 @@ void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
     visibility_.filtered =
         trmv_spatial_pass(visibility_.noisy, surface_, windows_.shadow_radius, sigma_x_, sigma_y_, params_.svgf);
   });
+  if (penumbra_run) penumbra_run->writes(kTrmvSigmaX, sigma_x_).writes(kTrmvSigmaY, sigma_y_);
+  write(log_pass("trmv_spatial", "visibility"), &kTrmvVisibilitySpatial, visibility_.filtered)
+      .pixel([this](int x, int y, Probe* probe) {  // the second (vertical) 1-D pass, on the first one's output
+        const bool per_pixel = params_.trmv.shadow_filter == 1;
+        const int r = windows_.shadow_radius;
+        const RgbPlane rows = trmv_spatial_axis(visibility_.noisy, surface_, kTrmvHorizontal, r,
+                                                per_pixel ? sigma_x_ : FloatPlane(), windows_.shadow_sigma, params_.svgf);
+        const float sigma = per_pixel ? sigma_y_.at(x, y) : windows_.shadow_sigma;
+        trmv_spatial_pixel(rows, surface_, kTrmvVertical, r, sigma, params_.svgf, x, y, probe);
+      });
   // Along the splatted shadow motion with alpha^V [TRMV21 Eq. 3, Eq. 4], or along the surface motion with the
   // constant alpha.
   visibility_.motion = trmv_visibility_motion(splat_, surface_.motion, p);
@@ -195,23 +245,49 @@ void TrmvFilter::prepare_visibility(const Frame& in, FloatPlane& theta) {
   receiver_ = {xyz_plane(in, "position"), xyz_plane(in, "geonormal"), surface_.mesh, surface_.motion};
   seen_prev_positions_ = std::move(prev_positions_);  // replaced after the frame by this frame's
   visibility_.alpha = {};
-  if (trmv_uses_shadow(p.motion))
-    time_pass("trmv_falloff", [&] {
-      TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
-      visibility_.alpha = std::move(falloff.alpha_v);
-      theta = std::move(falloff.theta);
-    });
+  if (!trmv_uses_shadow(p.motion)) return;
+  time_pass("trmv_falloff", [&] {
+    TrmvFalloffOutput falloff = trmv_falloff_pass(receiver_, shadow_motion_, seen_prev_positions_, p);
+    visibility_.alpha = std::move(falloff.alpha_v);
+    theta_ = std::move(falloff.theta);
+  });
+  log_pass("trmv_falloff", "visibility")
+      .writes(kTrmvTheta, theta_)
+      .writes(kTrmvAlphaV, visibility_.alpha)
+      .pixel([this](int x, int y, Probe* probe) {
+        trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, params_.trmv, x, y, probe);
+      });
 }
 
 void TrmvFilter::prepare_diffuse(const Frame& in) {
   const TrmvParams& p = params_.trmv;
   diffuse_.noisy = rgb_plane(in, "indirect.diffuse");
-  // 1. The spatial filter: "a 4-level a-trous wavelet filter, essentially 32x32" [TRMV21 Sec. 5] (atrous.h).
+  // 1. The spatial filter: "a 4-level a-trous wavelet filter, essentially 32x32" [TRMV21 Sec. 5] (atrous.h), each
+  //    level logged on the one before; or the shadow filter's bilateral (diffuse_filter = 0, not probed).
+  diffuse_levels_.clear();
   time_pass("trmv_atrous", [&] {
-    diffuse_.filtered = p.diffuse_filter == 1
-                            ? trmv_atrous_pass(diffuse_.noisy, surface_, windows_.atrous_levels, params_.svgf)
-                            : bilateral(diffuse_.noisy, surface_, windows_, params_.svgf);
+    if (p.diffuse_filter != 1) {
+      diffuse_.filtered = bilateral(diffuse_.noisy, surface_, windows_, params_.svgf);
+      return;
+    }
+    diffuse_levels_.reserve(size_t(windows_.atrous_levels));
+    for (int level = 0; level < windows_.atrous_levels; ++level)
+      diffuse_levels_.push_back(trmv_atrous_level(level == 0 ? diffuse_.noisy : diffuse_levels_.back(), surface_,
+                                                  level, params_.svgf));
+    diffuse_.filtered = diffuse_levels_.empty() ? diffuse_.noisy : diffuse_levels_.back();
   });
+  if (diffuse_levels_.empty()) {
+    log_pass("trmv_atrous", "diffuse").writes(layers::kTrmvDiffuseSpatial, diffuse_.filtered);
+  } else {
+    for (int level = 0; level < int(diffuse_levels_.size()); ++level) {
+      PassRun& run = log_pass("trmv_atrous", "diffuse", level);
+      if (level + 1 == int(diffuse_levels_.size())) run.writes(layers::kTrmvDiffuseSpatial, diffuse_.filtered);
+      run.pixel([this, level](int x, int y, Probe* probe) {
+        trmv_atrous_pixel(level == 0 ? diffuse_.noisy : diffuse_levels_[size_t(level - 1)], surface_, level,
+                          params_.svgf, x, y, probe);
+      });
+    }
+  }
   seen_cones_ = std::move(cones_);  // replaced below by this frame's
   diffuse_.motion = trmv_diffuse_motion(in, surface_.motion, p);
   if (!trmv_uses_dual(p.motion) || p.cones == 0) return;  // cones = 0: the colour at x^O (Fig. 6's repetition)
@@ -229,12 +305,21 @@ void TrmvFilter::prepare_diffuse(const Frame& in) {
     diffuse_.motion.reshaded = std::move(r.reshaded);
     diffuse_.motion.reshaded_valid = std::move(r.reshaded_valid);
   });
+  // The diffuse light's: the re-shaded history at a disoccluded pixel.
+  log_pass("trmv_reshade", "diffuse")
+      .writes(layers::kTrmvDiffuseReshaded, diffuse_.motion.reshaded)
+      .pixel([this](int x, int y, Probe* probe) {
+        glm::vec3 reshaded;
+        trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, trmv_cones_of(filtered_cones_, x, y),
+                           params_.trmv.cone_transfer == 0, x, y, reshaded, probe);
+      });
 }
 
 void TrmvFilter::prepare_glossy(const Frame& in) {
   const TrmvParams& p = params_.trmv;
   glossy_.noisy = rgb_plane(in, "indirect.glossy");
-  // 1. The spatial filter: the BRDF lobe's footprint [TRMV21 Sec. 5, LLK*19] (reflection.h).
+  // 1. The spatial filter: the BRDF lobe's footprint [TRMV21 Sec. 5, LLK*19] (reflection.h); or the shadow filter's
+  //    bilateral (glossy_filter = 0, not probed).
   time_pass("trmv_reflection", [&] {
     if (p.glossy_filter == 1) {
       footprint_ = TrmvFootprint::from_frame(in);
@@ -244,166 +329,81 @@ void TrmvFilter::prepare_glossy(const Frame& in) {
       glossy_.filtered = bilateral(glossy_.noisy, surface_, windows_, params_.svgf);
     }
   });
+  PassRun& run = log_pass("trmv_reflection", "glossy").writes(layers::kTrmvGlossySpatial, glossy_.filtered);
+  if (p.glossy_filter == 1)
+    run.pixel([this](int x, int y, Probe* probe) {
+      trmv_reflection_pixel(glossy_.noisy, surface_, footprint_, windows_.glossy_radius, params_.svgf, x, y, probe);
+    });
   glossy_.motion = trmv_glossy_motion(in, surface_.motion, p);
 }
 
 Frame TrmvFilter::filter(const Frame& in, Frame* dump) {
+  using namespace layers;
   times_.clear();
   const RgbPlane& history = diffuse_.history.color;
   if (history.width != 0 && (history.width != in.width() || history.height != in.height()))
     throw Error(in.source + ": frame size changed within the sequence (" + std::to_string(in.width()) + "x" +
                 std::to_string(in.height()) + ", was " + std::to_string(history.width) + "x" +
                 std::to_string(history.height) + ")");
-  if (dump && (dump->width() != in.width() || dump->height() != in.height())) *dump = Frame(in.width(), in.height());
+  log_.begin(in.width(), in.height());
   surface_ = SurfacePlanes::from_frame(in);
   windows_ = trmv_windows(params_.trmv, in.height());
 
-  FloatPlane theta;
-  prepare_visibility(in, theta);
-  const RgbPlane& v = filter_component(visibility_);
+  prepare_visibility(in);
+  const RgbPlane& v = filter_component(visibility_, "visibility",
+                                       {&kTrmvVisibilityTemporal, &kTrmvVisibilityClamped, &kTrmvWeightA,
+                                        &kTrmvVisibilityWeightC, &kTrmvVisibilityCleaned});
   prepare_diffuse(in);
-  const RgbPlane& diffuse = filter_component(diffuse_);
+  const RgbPlane& diffuse = filter_component(diffuse_, "diffuse",
+                                             {&kTrmvDiffuseTemporal, &kTrmvDiffuseClamped, nullptr,
+                                              &kTrmvDiffuseWeightC, &kTrmvDiffuseCleaned});
   prepare_glossy(in);
-  const RgbPlane& glossy = filter_component(glossy_);
+  const RgbPlane& glossy = filter_component(glossy_, "glossy",
+                                            {&kTrmvGlossyTemporal, &kTrmvGlossyClamped, nullptr, &kTrmvGlossyWeightC,
+                                             &kTrmvGlossyCleaned});
   prev_positions_ = {receiver_.position, receiver_.normal, surface_.mesh};
 
-  RgbPlane color, display;
-  time_pass("modulate", [&] { color = trmv_remodulate(in, v, diffuse, glossy); });
-  time_pass("tonemap", [&] { display = tonemap(color, params_.tonemap); });
-  this->dump(dump, theta, display);
+  time_pass("modulate", [&] { color_ = trmv_remodulate(in, v, diffuse, glossy); });
+  time_pass("tonemap", [&] { display_ = tonemap(color_, params_.tonemap); });
+  log_pass("tonemap").writes(kTonemapped, display_).pixel([this](int x, int y, Probe* probe) {
+    tonemap_pixel(color_.at(x, y), params_.tonemap, probe);
+  });
+  if (dump) log_.dump(*dump);
 
   Frame out(in.width(), in.height());
   out.source = in.source;
-  set_rgb_plane(out, layer_name(layers::kColor), color);
-  set_rgb_plane(out, layer_name(layers::kDisplay), display);  // no TAA: the tone-mapped colour
+  set_rgb_plane(out, layer_name(kColor), color_);
+  set_rgb_plane(out, layer_name(kDisplay), display_);  // no TAA: the tone-mapped colour
   return out;
 }
 
-void TrmvFilter::dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const {
-  if (!dump) return;
-  using namespace layers;
-  const TrmvParams& p = params_.trmv;
-  const auto first = [](const RgbPlane& rgb) {  // visibility travels as (V, V, V)
-    FloatPlane out(rgb.width, rgb.height);
-    for (size_t i = 0; i < rgb.data.size(); ++i) out.data[i] = rgb.data[i].x;
-    return out;
-  };
-  if (p.shadow_filter == 1) {
-    dump_layer(dump, kTrmvPenumbraWidth, {}, -1, penumbra_.width);
-    dump_layer(dump, kTrmvSigmaX, {}, -1, sigma_x_);
-    dump_layer(dump, kTrmvSigmaY, {}, -1, sigma_y_);
-  }
-  if (trmv_uses_splat(p)) {
-    FloatPlane mx(splat_.motion.width, splat_.motion.height), my = mx, landed = mx;
-    for (size_t i = 0; i < mx.data.size(); ++i)
-      mx.data[i] = splat_.motion.data[i].x, my.data[i] = splat_.motion.data[i].y, landed.data[i] = float(splat_.landed.data[i]);
-    dump_layer(dump, kTrmvSplatX, {}, -1, mx);
-    dump_layer(dump, kTrmvSplatY, {}, -1, my);
-    dump_layer(dump, kTrmvSplatLanded, {}, -1, landed);
-  }
-  dump_layer(dump, kTrmvVisibilitySpatial, {}, -1, first(visibility_.filtered));
-  dump_layer(dump, kTrmvDiffuseSpatial, {}, -1, diffuse_.filtered);
-  dump_layer(dump, kTrmvGlossySpatial, {}, -1, glossy_.filtered);
-  if (trmv_uses_shadow(p.motion)) {
-    dump_layer(dump, kTrmvTheta, {}, -1, theta);
-    dump_layer(dump, kTrmvAlphaV, {}, -1, visibility_.alpha);
-  }
-  if (trmv_uses_dual(p.motion) && p.cones != 0) dump_layer(dump, kTrmvDiffuseReshaded, {}, -1, diffuse_.motion.reshaded);
-  dump_layer(dump, kTrmvWeightA, {}, -1, visibility_.cleaned.w_a);
-  dump_layer(dump, kTrmvVisibilityTemporal, {}, -1, first(visibility_.temporal.color));
-  dump_layer(dump, kTrmvVisibilityClamped, {}, -1, first(visibility_.temporal.clamped));
-  dump_layer(dump, kTrmvDiffuseTemporal, {}, -1, diffuse_.temporal.color);
-  dump_layer(dump, kTrmvDiffuseClamped, {}, -1, diffuse_.temporal.clamped);
-  dump_layer(dump, kTrmvGlossyTemporal, {}, -1, glossy_.temporal.color);
-  dump_layer(dump, kTrmvGlossyClamped, {}, -1, glossy_.temporal.clamped);
-  dump_layer(dump, kTrmvVisibilityWeightC, {}, -1, visibility_.cleaned.w_c);
-  dump_layer(dump, kTrmvDiffuseWeightC, {}, -1, diffuse_.cleaned.w_c);
-  dump_layer(dump, kTrmvGlossyWeightC, {}, -1, glossy_.cleaned.w_c);
-  dump_layer(dump, kTrmvVisibilityCleaned, {}, -1, first(visibility_.cleaned.color));
-  dump_layer(dump, kTrmvDiffuseCleaned, {}, -1, diffuse_.cleaned.color);
-  dump_layer(dump, kTrmvGlossyCleaned, {}, -1, glossy_.cleaned.color);
-  dump_layer(dump, kTonemapped, {}, -1, tonemapped);
-}
-
-std::vector<std::string> trmv_passes(const TrmvParams& p) {
-  std::vector<std::string> passes;
-  if (p.shadow_filter == 1) passes.push_back("trmv_penumbra");
-  if (trmv_uses_splat(p)) passes.push_back("trmv_splat");
-  passes.push_back("trmv_spatial");
-  if (trmv_uses_shadow(p.motion)) passes.push_back("trmv_falloff");
-  passes.push_back("trmv_atrous");
-  if (trmv_uses_dual(p.motion) && p.cones != 0) passes.push_back("trmv_reshade");
-  passes.insert(passes.end(), {"trmv_reflection", "trmv_temporal", "trmv_cleanup"});
+std::vector<PassUse> trmv_passes(const TrmvParams& p) {
+  std::vector<PassUse> passes;
+  const auto add = [&](const char* name) { passes.push_back({&find_pass(name)}); };
+  if (p.shadow_filter == 1) add("trmv_penumbra");
+  if (trmv_uses_splat(p)) add("trmv_splat");
+  add("trmv_spatial");
+  if (trmv_uses_shadow(p.motion)) add("trmv_falloff");
+  add("trmv_atrous");
+  if (trmv_uses_dual(p.motion) && p.cones != 0) add("trmv_reshade");
+  for (const char* name : {"trmv_reflection", "trmv_temporal", "trmv_cleanup", "tonemap"}) add(name);
   return passes;
 }
 
-std::vector<std::string> TrmvFilter::probe_passes() const { return trmv_passes(params_.trmv); }
+std::vector<std::string> TrmvFilter::probe_passes() const {
+  std::vector<std::string> names;
+  for (const PassUse& use : trmv_passes(params_.trmv)) names.emplace_back(use.pass->name);
+  return names;
+}
 
 std::vector<std::string> TrmvFilter::dump_channels() const { return trmv_dump_channels(params_.trmv); }
 
-std::vector<std::string> trmv_dump_channels(const TrmvParams& params) {
-  std::vector<std::string> channels;
-  for (const std::string& name : trmv_passes(params))
-    for (const LayerDecl* layer : find_pass(name).writes)
-      for (std::string& c : layer_channels(*layer)) channels.push_back(std::move(c));
-  for (std::string& c : layer_channels(layers::kTonemapped)) channels.push_back(std::move(c));
-  return channels;
-}
-
-const TrmvFilter::Component& TrmvFilter::component(const std::string& stream) const {
-  if (stream == "visibility" || stream == "direct") return visibility_;  // direct's noisy part is its visibility
-  if (stream == "diffuse") return diffuse_;
-  if (stream == "glossy") return glossy_;
-  throw Error("--stream '" + stream + "' is not one of trmv's components: visibility (or direct), diffuse, glossy");
-}
+std::vector<std::string> trmv_dump_channels(const TrmvParams& params) { return dump_channels_of(trmv_passes(params)); }
 
 Probe TrmvFilter::probe(const std::string& pass, int x, int y, const std::string& stream, int level) const {
-  const std::vector<std::string> passes = probe_passes();
-  if (std::find(passes.begin(), passes.end(), pass) == passes.end()) {
-    find_pass(pass);  // throws, listing the passes, when there is no such pass at all
-    throw Error("method trmv does not run pass '" + pass + "' with these parameters");
-  }
-  if (surface_.width() == 0) throw Error("probe: no frame has been filtered yet");
-  if (x < 0 || y < 0 || x >= surface_.width() || y >= surface_.height())
-    throw Error("--pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
-                std::to_string(surface_.width()) + "x" + std::to_string(surface_.height()) + " frame");
-  // Re-run the pass's golden per-pixel function on exactly the inputs it saw, with the probe attached.
-  const TrmvParams& p = params_.trmv;
-  const Component& c = component(stream);
-  const SvgfParams& edges = params_.svgf;
-  Probe probe;
-  if (pass == "trmv_penumbra") {
-    float width;
-    glm::vec2 metres;
-    trmv_penumbra_pixel(penumbra_inputs_, trmv_light_diameters(penumbra_inputs_.light, penumbra_inputs_.light_id), x,
-                        y, width, metres, &probe);
-  }
-  if (pass == "trmv_splat") trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, &probe);
-  if (pass == "trmv_spatial") {  // the visibility's; the second (vertical) 1-D pass, on the first one's output
-    const int r = windows_.shadow_radius;
-    const bool per_pixel = p.shadow_filter == 1;
-    const RgbPlane rows = trmv_spatial_axis(visibility_.noisy, surface_, kTrmvHorizontal, r,
-                                            per_pixel ? sigma_x_ : FloatPlane(), windows_.shadow_sigma, edges);
-    const float sigma = per_pixel ? sigma_y_.at(x, y) : windows_.shadow_sigma;
-    trmv_spatial_pixel(rows, surface_, kTrmvVertical, r, sigma, edges, x, y, &probe);
-  }
-  if (pass == "trmv_falloff") trmv_falloff_pixel(receiver_, shadow_motion_, seen_prev_positions_, p, x, y, &probe);
-  if (pass == "trmv_atrous") {  // the diffuse light's, at `level` (the last by default), on the levels before it
-    const int last = windows_.atrous_levels - 1, at = level < 0 ? last : std::min(level, last);
-    if (p.diffuse_filter == 1)
-      trmv_atrous_pixel(trmv_atrous_pass(diffuse_.noisy, surface_, at, edges), surface_, at, edges, x, y, &probe);
-  }
-  if (pass == "trmv_reshade") {  // the diffuse light's: the re-shaded history at a disoccluded pixel
-    glm::vec3 reshaded;
-    trmv_reshade_pixel(seen_cones_, cone_layout_, surface_, dual_motion_, trmv_cones_of(filtered_cones_, x, y),
-                       p.cone_transfer == 0, x, y, reshaded, &probe);
-  }
-  if (pass == "trmv_reflection" && p.glossy_filter == 1)
-    trmv_reflection_pixel(glossy_.noisy, surface_, footprint_, windows_.glossy_radius, edges, x, y, &probe);
-  if (pass == "trmv_temporal")
-    trmv_temporal_pixel(c.filtered, surface_, c.motion, c.seen_history, c.alpha, p, edges, x, y, &probe);
-  if (pass == "trmv_cleanup") trmv_cleanup_weights_pixel(c.temporal, c.alpha, p, x, y, &probe);
-  return probe;
+  // "direct" names the visibility, direct light's noisy part; the a-trous's level -1 is its last.
+  if (pass == "trmv_atrous" && level < 0) level = windows_.atrous_levels - 1;
+  return Method::probe(pass, x, y, stream == "direct" ? "visibility" : stream, level);
 }
 
 }  // namespace rtdr

@@ -43,6 +43,7 @@
 #include "filters/trmv/trmv_params.h"
 
 #include <string>
+#include <vector>
 
 namespace rtdr {
 
@@ -50,7 +51,7 @@ namespace rtdr {
 InputChannels trmv_input_channels();
 // The passes trmv runs with these parameters, in order (filters/passes.h), and the channels of their dump layers
 // and the tone-mapped colour: what both back ends dump (TrmvFilter, gpu/trmv_vulkan.h).
-std::vector<std::string> trmv_passes(const TrmvParams& params);
+std::vector<PassUse> trmv_passes(const TrmvParams& params);
 std::vector<std::string> trmv_dump_channels(const TrmvParams& params);
 // The colour from the three filtered components: direct = direct.shading x V, indirect = diffuse + glossy,
 // remodulated with the albedo, emission added [TRMV21 Sec. 4.1] [SVGF17 Sec. 3]. `visibility` is (V, V, V).
@@ -75,7 +76,7 @@ class TrmvFilter : public Method {
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
   // `stream` is the component: "visibility" (or "direct", whose noisy part it is), "diffuse" or "glossy"; `level`
-  // is unused.
+  // is unused. The pass log's probe (filters/pass_log.h).
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return trmv_input_channels(); }
@@ -93,28 +94,34 @@ class TrmvFilter : public Method {
     TrmvTemporalOutput temporal;  // cbar_i, the fetched and clamped histories
     TrmvCleanupOutput cleaned;    // after the clean-up [TRMV21 Eq. 7-8]
   };
-  // Runs one component's temporal and clean-up passes on c.filtered, c.motion and c.alpha.
-  const RgbPlane& filter_component(Component& c);
-  // The visibility's splat, spatial filter, motion and alpha^V for this frame (the splat, penumbra, spatial and
+  // The layers a component's temporal and clean-up passes write (filters/passes.h): the blend and clamped history,
+  // the clean-up's w_A (the visibility's alone, else null), w_C and result.
+  struct Layers {
+    const LayerDecl *temporal, *clamped, *w_a, *w_c, *cleaned;
+  };
+  // Runs one component's temporal and clean-up passes on c.filtered, c.motion and c.alpha, and logs them as
+  // component `name`.
+  const RgbPlane& filter_component(Component& c, const std::string& name, const Layers& layers);
+  // The visibility's splat, spatial filter, motion and alpha^V for this frame (the penumbra, splat, spatial and
   // falloff passes).
-  void prepare_visibility(const Frame& in, FloatPlane& theta);
+  void prepare_visibility(const Frame& in);
   // The diffuse light's spatial filter and motion: the dual vector, with the cones' re-shaded history (the
-  // re-shade pass).
+  // a-trous and re-shade passes).
   void prepare_diffuse(const Frame& in);
-  // The glossy light's spatial filter and motion.
+  // The glossy light's spatial filter and motion (the reflection pass).
   void prepare_glossy(const Frame& in);
-  void dump(Frame* dump, const FloatPlane& theta, const RgbPlane& tonemapped) const;
-  const Component& component(const std::string& stream) const;
 
   MethodParams params_;
   SurfacePlanes surface_;
   TrmvWindows windows_;                   // this frame's windows (footprint.h)
+  TrmvParams cleanup_params_;             // params_.trmv with the clean-up's window at this frame's size
   Component visibility_, diffuse_, glossy_;
   TrmvPenumbraInputs penumbra_inputs_;    // this frame's light samples and receivers (penumbra.h)
   TrmvPenumbraOutput penumbra_;           // W and the metres per pixel (shadow_filter = 1)
   TrmvSplatPlanes splat_inputs_;          // what the splat read
   TrmvSplatOutput splat_;                 // the splatted shadow motion and W
   FloatPlane sigma_x_, sigma_y_;          // the penumbra filter's std per pixel (shadow_filter = 1)
+  std::vector<RgbPlane> diffuse_levels_;  // the diffuse light's a-trous levels (diffuse_filter = 1), for the probe
   TrmvFootprint footprint_;               // the glossy lobe's footprint (glossy_filter = 1)
   TrmvMotion shadow_motion_;              // the splatted shadow motion and where a vector landed (.valid)
   TrmvMotion dual_motion_;                // motion.dual and where Eq. 6 applied (.valid)
@@ -126,6 +133,8 @@ class TrmvFilter : public Method {
   TrmvReceiver receiver_;                 // this frame's s_i, n(s_i), for Eq. 4
   TrmvPreviousPositions prev_positions_;  // the previous frame's `position`, `geonormal` and id.mesh, for Eq. 4
   TrmvPreviousPositions seen_prev_positions_;  // those the falloff pass read this frame
+  FloatPlane theta_;                      // the falloff's theta [TRMV21 Eq. 4]
+  RgbPlane color_, display_;              // the remodulated colour and its tone-mapped display
 };
 
 }  // namespace rtdr

@@ -10,9 +10,9 @@
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
 // With --backend vulkan (or cpu,vulkan), also the device time of the Vulkan ports of the shadow vector, its splat
 // (gpu/motion_shadow_gpu.h, gpu/trmv_splat_gpu.h), the dual vector (gpu/motion_dual_gpu.h) and the glossy vector
-// (gpu/motion_glossy_gpu.h), the median of their dispatches' timestamps over the same runs, beside the CPU columns. A vk column is the shader's
-// dispatch alone: not the packing, upload or readback, nor the dual port's host part (the previous frame's
-// rasterization and every sample's object point, which the dual ms column includes).
+// (gpu/motion_glossy_gpu.h), the median of their dispatches' timestamps over the same runs, beside the CPU columns.
+// A vk column is the shader's dispatch alone: not the packing, upload or readback, nor the dual port's host part
+// (the previous frame's rasterization and every sample's object point, which the dual ms column includes).
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"

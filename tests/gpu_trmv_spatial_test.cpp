@@ -74,8 +74,8 @@ TrmvParams params_with(int radius, float sigma) {
 // Port and golden pass on the same inputs: exact where the banner says so, else within its bound.
 void check_port(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s, const TrmvParams& params,
                 const SvgfParams& edges, double* ms = nullptr) {
-  const RgbPlane golden = trmv_spatial_pass(c, s, params, edges);
-  const RgbPlane gpu = trmv_spatial_vulkan(context, c, s, params, edges, ms);
+  const RgbPlane golden = trmv_spatial_pass(c, s, params.spatial_radius, params.spatial_sigma, edges);
+  const RgbPlane gpu = trmv_spatial_vulkan(context, c, s, params.spatial_radius, params.spatial_sigma, edges, ms);
   REQUIRE(gpu.width == golden.width);
   REQUIRE(gpu.height == golden.height);
   const bool identity = params.spatial_radius == 0 || !(params.spatial_sigma > 0.0f);
@@ -129,8 +129,8 @@ TEST_CASE("the TRMV spatial port matches trmv_spatial_pass on a rendered pillars
     check_port(*context, c, s, params_with(3, 1.5f), edges);
   }
   // The port's visibility, channel by channel, is the golden scalar pass's.
-  const FloatPlane golden = trmv_spatial_pass(v, s, params_with(15, 5.0f), edges);
-  const RgbPlane gpu = trmv_spatial_vulkan(*context, visibility, s, params_with(15, 5.0f), edges);
+  const FloatPlane golden = trmv_spatial_pass(v, s, 15, 5.0f, edges);
+  const RgbPlane gpu = trmv_spatial_vulkan(*context, visibility, s, 15, 5.0f, edges);
   double worst = 0.0;
   for (size_t i = 0; i < golden.data.size(); ++i)
     for (int k = 0; k < 3; ++k) worst = std::max(worst, double(std::abs(gpu.data[i][k] - golden.data[i])));
@@ -141,8 +141,8 @@ TEST_CASE("the TRMV spatial port matches trmv_spatial_pass on a rendered pillars
 TEST_CASE("the TRMV spatial port rejects planes of different sizes and a negative radius") {
   const auto context = validated_context();
   const SurfacePlanes s = blank_surface(12, 12);
-  CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 11), s, TrmvParams{}, SvgfParams{}), Error);
-  CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 12), s, params_with(-1, 5.0f), SvgfParams{}), Error);
+  CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 11), s, 15, 5.0f, SvgfParams{}), Error);
+  CHECK_THROWS_AS(trmv_spatial_vulkan(*context, RgbPlane(12, 12), s, -1, 5.0f, SvgfParams{}), Error);
 }
 
 // The Vulkan TRMV filters its three components side by side, one dispatch per axis (filters/trmv/spatial_shared.h's

@@ -214,7 +214,9 @@ void TrmvFilter::prepare_visibility(const Frame& in) {
         .writes(kTrmvSplatX, std::move(mx))
         .writes(kTrmvSplatY, std::move(my))
         .writes(kTrmvSplatLanded, std::move(landed))
-        .pixel([this](int x, int y, Probe* probe) { trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, probe); });
+        .pixel([this](int x, int y, Probe* probe) {
+          trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, probe);
+        });
   }
   // 1. The spatial filter: the 31x31 separable joint bilateral [TRMV21 Sec. 5], or its std per pixel and axis from
   //    the splatted penumbra (penumbra.h).
@@ -234,7 +236,8 @@ void TrmvFilter::prepare_visibility(const Frame& in) {
         const bool per_pixel = params_.trmv.shadow_filter == 1;
         const int r = windows_.shadow_radius;
         const RgbPlane rows = trmv_spatial_axis(visibility_.noisy, surface_, kTrmvHorizontal, r,
-                                                per_pixel ? sigma_x_ : FloatPlane(), windows_.shadow_sigma, params_.svgf);
+                                                per_pixel ? sigma_x_ : FloatPlane(), windows_.shadow_sigma,
+                                                params_.svgf);
         const float sigma = per_pixel ? sigma_y_.at(x, y) : windows_.shadow_sigma;
         trmv_spatial_pixel(rows, surface_, kTrmvVertical, r, sigma, params_.svgf, x, y, probe);
       });

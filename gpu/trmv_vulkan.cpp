@@ -186,16 +186,18 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   // 2. On the host, the golden passes that have no port yet: the penumbra and the splat, the diffuse light's a-trous
   //    and cones, the glossy light's lobe filter; their results are uploaded.
   const bool penumbra = p.shadow_filter == 1;
-  TrmvSplatOutput splat;
+  TrmvSplatOutput& splat = host_.splat;
+  splat = {};
   {
     const auto h0 = Clock::now();
-    TrmvPenumbraOutput pen;
-    if (penumbra) pen = trmv_penumbra_pass(TrmvPenumbraInputs::from_frame(in));
+    if (penumbra) host_.penumbra = trmv_penumbra_pass(TrmvPenumbraInputs::from_frame(in));
     if (trmv_uses_splat(p))
-      splat = trmv_splat_pass(trmv_splat_planes(in, surface, penumbra ? pen.width : FloatPlane()), win.splat_size);
+      splat = trmv_splat_pass(trmv_splat_planes(in, surface, penumbra ? host_.penumbra.width : FloatPlane()),
+                              win.splat_size);
     if (penumbra) {
-      FloatPlane sigma_x, sigma_y;
-      trmv_penumbra_sigmas(splat.carried, pen.metres, kTrmvPenumbraSigmaFloor, win.shadow_sigma, sigma_x, sigma_y);
+      FloatPlane &sigma_x = host_.sigma_x, &sigma_y = host_.sigma_y;
+      trmv_penumbra_sigmas(splat.carried, host_.penumbra.metres, kTrmvPenumbraSigmaFloor, win.shadow_sigma, sigma_x,
+                           sigma_y);
       for (size_t i = 0; i < sigma_x.data.size(); ++i)
         b.axis_sigma->data()[2 * i] = sigma_x.data[i], b.axis_sigma->data()[2 * i + 1] = sigma_y.data[i];
     }
@@ -292,6 +294,22 @@ void TrmvVulkan::dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) c
     return p.history_after_cleanup != 0 ? b.temporal[k] : b.history[k][cur];
   };
   Frame* d = &out;
+  if (p.shadow_filter == 1) {  // the host's penumbra and the std it gave each axis
+    dump_layer(d, kTrmvPenumbraWidth, {}, -1, host_.penumbra.width);
+    dump_layer(d, kTrmvSigmaX, {}, -1, host_.sigma_x);
+    dump_layer(d, kTrmvSigmaY, {}, -1, host_.sigma_y);
+  }
+  if (trmv_uses_splat(p)) {  // the host's splat
+    FloatPlane x(w, h), y(w, h), landed(w, h);
+    for (size_t i = 0; i < x.data.size(); ++i) {
+      x.data[i] = host_.splat.motion.data[i].x;
+      y.data[i] = host_.splat.motion.data[i].y;
+      landed.data[i] = float(host_.splat.landed.data[i]);
+    }
+    dump_layer(d, kTrmvSplatX, {}, -1, x);
+    dump_layer(d, kTrmvSplatY, {}, -1, y);
+    dump_layer(d, kTrmvSplatLanded, {}, -1, landed);
+  }
   dump_layer(d, kTrmvVisibilitySpatial, {}, -1, first(b.filtered[kVisibility]));
   dump_layer(d, kTrmvDiffuseSpatial, {}, -1, rgb(b.filtered[kDiffuse]));
   dump_layer(d, kTrmvGlossySpatial, {}, -1, rgb(b.filtered[kGlossy]));

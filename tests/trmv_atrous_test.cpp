@@ -21,7 +21,7 @@ SurfacePlanes flat(int w, int h) {
 
 }  // namespace
 
-TEST_CASE("a-trous: one level spreads a spike over the 3x3 box, 1/9 each; level 1 over taps 2 apart") {
+TEST_CASE("a-trous: one level spreads a spike over the 3x3 box, 1/9 each, and level 1 over taps 2 apart") {
   RgbPlane spike(9, 9, glm::vec3(0.0f));
   spike.at(4, 4) = glm::vec3(9.0f);
   const SvgfParams edges;

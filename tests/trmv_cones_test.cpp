@@ -419,7 +419,7 @@ TEST_CASE("per-cone estimator: 10^5 cosine-weighted samples of L = 1 + w.x avera
   }
 }
 
-TEST_CASE("transfer between two normals: the identity for equal normals, with share 1; a uniform field stays uniform") {
+TEST_CASE("transfer between two normals: the identity for equal normals, with share 1, and a uniform field stays uniform") {
   const ConeLayout layout = make_cone_layout();
   std::mt19937_64 rng(7);
   auto random_cones = [&]() {

@@ -26,7 +26,7 @@ TEST_CASE("a window of side S at 1080 rows has side S H / 1080 at H rows, the ne
   CHECK(trmv_scaled_sigma(5.0f, 15, 360, 1080) == Approx(5.0f / 3.0f));
 }
 
-TEST_CASE("four 3x3 a-trous levels reach 31 pixels at 1080 rows; the level count nearest in the log elsewhere") {
+TEST_CASE("four 3x3 a-trous levels reach 31 pixels at 1080 rows, and elsewhere the level count nearest in the log") {
   // Side 2^(L+1) - 1 scaled: 720 -> 20.7, log2(21.7) - 1 = 3.44 -> 3; 360 -> 10.3, 2.50 -> 3; 180 -> 5.17, 1.62 -> 2;
   // 90 -> 2.58, 0.84 -> 1.
   CHECK(trmv_scaled_levels(4, 1080, 1080) == 4);

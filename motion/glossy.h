@@ -115,7 +115,7 @@ struct GlossyMotion {
   bool valid = false;
   // The same lobe's footprint seen by the CURRENT camera: the columns b1, b2 and Sigma_i = b1 b1^T + b2 b2^T
   // (pixels^2), from the current virtual image v_i (steps 2-4 with P_i). Independent of the previous frame: what
-  // the glossy spatial filter reads (filters/trmv/glossy_filter.h, [LLK*19]'s lobe footprint). 0 without one.
+  // the glossy spatial filter reads (filters/trmv/reflection.h, [LLK*19]'s lobe footprint). 0 without one.
   glm::mat2 footprint_axes{0.0f};
   glm::mat2 footprint{0.0f};
   bool has_footprint = false;

@@ -128,8 +128,9 @@ TrmvFalloffPush trmv_falloff_push(uint32_t width, uint32_t height, uint32_t prev
                                   bool has_valid, const TrmvParams& params);
 
 // Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
-// then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).
-template <class Record>
+// then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time). `Shaders` is
+// the pipelines' class: SvgfShaders, or TrmvShaders (gpu/trmv_shaders.h).
+template <class Shaders = SvgfShaders, class Record>
 void run_pass(VulkanContext& context, Record&& record, double* ms);
 
 class SvgfShaders {
@@ -212,9 +213,9 @@ class SvgfShaders {
   ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_, asvgf_gradient_atrous_;
 };
 
-template <class Record>
+template <class Shaders, class Record>
 void run_pass(VulkanContext& context, Record&& record, double* ms) {
-  const SvgfShaders shaders(context);
+  const Shaders shaders(context);
   ComputeBatch batch(context, 1);
   record(shaders, batch);
   batch.run();

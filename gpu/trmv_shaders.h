@@ -35,15 +35,7 @@ class TrmvShaders {
   ComputePipeline splat_;
 };
 
-// Runs one of TrmvShaders' passes on its own (the per-pass ports of gpu/trmv_*_gpu.h), as run_pass does for
-// SvgfShaders (gpu/svgf_shaders.h).
-template <class Record>
-void run_trmv_pass(VulkanContext& context, Record&& record, double* ms) {
-  const TrmvShaders shaders(context);
-  ComputeBatch batch(context, 1);
-  record(shaders, batch);
-  batch.run();
-  batch.total_time(ms);
-}
+// One of TrmvShaders' passes on its own (the per-pass ports of gpu/trmv_*_gpu.h) runs through
+// run_pass<TrmvShaders> (gpu/svgf_shaders.h).
 
 }  // namespace rtdr

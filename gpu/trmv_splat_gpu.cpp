@@ -2,6 +2,7 @@
 #include "gpu/trmv_splat_gpu.h"
 
 #include "gpu/svgf_planes.h"
+#include "gpu/svgf_shaders.h"
 #include "gpu/trmv_shaders.h"
 
 namespace rtdr {
@@ -36,7 +37,7 @@ TrmvSplatOutput trmv_splat_vulkan(VulkanContext& context, const TrmvSplatPlanes&
   pack_ids(in.instance, *instance);
 
   const TrmvSplatPush push{.width = uint32_t(w), .height = uint32_t(h), .size = size, .unused = 0u};
-  run_trmv_pass(
+  run_pass<TrmvShaders>(
       context,
       [&](const TrmvShaders& shaders, ComputeBatch& batch) {
         shaders.splat(batch, {shadow.get(), surface_motion.get(), instance.get(), normal.get()}, *result, push);

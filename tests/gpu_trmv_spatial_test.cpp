@@ -111,6 +111,19 @@ TEST_CASE("the TRMV spatial port matches trmv_spatial_pass on random planes of a
   soft.sigma_n = 4.0f;
   soft.sigma_z = 4.0f;
   check_port(*context, c, s, params_with(15, 5.0f), soft, nullptr);
+  // A std per pixel and axis (the penumbra filter, filters/trmv/penumbra.h), some 0 (that axis the identity).
+  FloatPlane sigma_x(w, h), sigma_y(w, h);
+  std::uniform_real_distribution<float> std_dev(0.0f, 5.0f);
+  for (size_t i = 0; i < sigma_x.data.size(); ++i) {
+    sigma_x.data[i] = i % 11 == 0 ? 0.0f : std_dev(rng);
+    sigma_y.data[i] = std_dev(rng);
+  }
+  const RgbPlane golden = trmv_spatial_pass(c, s, 15, sigma_x, sigma_y, edges);
+  const RgbPlane gpu = trmv_spatial_vulkan(*context, c, s, 15, 5.0f, edges, nullptr, sigma_x, sigma_y);
+  const double measured = max_difference(gpu, golden), bound = derived_bound(15, edges.sigma_n, max_value(c));
+  WARN("std per pixel and axis: measured max |gpu - golden| " << measured << " (bound " << bound << ")");
+  CHECK(measured <= bound);
+  CHECK(uncovered_mismatches(gpu, golden, s) == 0);
   check_no_validation_messages(*context);
 }
 

@@ -181,3 +181,42 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
   CHECK_THROWS_AS(m->probe("trmv_cleanup", 1, 1, "indirect", 0), Error);  // not one of its components
   CHECK_THROWS_AS(m->probe("trmv_cleanup", kW, 1, "diffuse", 0), Error);  // outside the frame
 }
+
+TEST_CASE("with the penumbra-sized shadow filter the dump holds W and the std per axis, and the probe recomputes them") {
+  const std::vector<Frame> frames = cornell_frames(2);
+  MethodParams params = method_defaults("trmv");
+  params.trmv.shadow_filter = 1;
+  const std::unique_ptr<Method> m = make_method("trmv", params);
+  Frame dump;
+  for (const Frame& f : frames) m->filter(f, &dump);
+  std::vector<std::string> channels;
+  for (const auto& [name, plane] : dump.float_channels()) channels.push_back(name);
+  std::vector<std::string> declared = m->dump_channels();
+  std::sort(declared.begin(), declared.end());
+  CHECK(channels == declared);
+  CHECK(declared.size() == 46);  // the default's 43, and W, sigma_x, sigma_y
+  CHECK(m->probe_passes().front() == "trmv_penumbra");
+  const auto term = [](const Probe& p, const std::string& name) {
+    for (const Probe::Term& t : p.terms())
+      if (t.name == name) return t.value[0];
+    return -1.0f;  // not noted: a lit pixel has no W
+  };
+  const FloatPlane& width = dump.float_channel("filter.trmv.visibility.penumbra");
+  const FloatPlane& sigma_y = dump.float_channel("filter.trmv.visibility.sigma_y");
+  int blocked = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const size_t i = size_t(y * kW + x);
+      if (frames.back().uint_channel("id.mesh").data[i] == kInvalidId) continue;
+      const float w = term(m->probe("trmv_penumbra", x, y, "visibility", 0), "W");
+      if (w >= 0.0f) {
+        ++blocked;
+        CHECK(w == width.data[i]);
+      } else {
+        CHECK(width.data[i] == 0.0f);
+      }
+      // The spatial pass's vertical 1-D pass takes the pixel's own std down the image.
+      CHECK(term(m->probe("trmv_spatial", x, y, "visibility", 0), "sigma") == sigma_y.data[i]);
+    }
+  CHECK(blocked > 20);  // the cornell box's shadows
+}

@@ -156,35 +156,12 @@ void TrmvVulkan::record_components(const GpuBuffer* alpha_v, bool per_axis_sigma
   }
 }
 
-Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
-  times_.clear();
-  const int w = in.width(), h = in.height();
-  Buffers& b = frame_buffers(buffers_, context_, in, frames_ > 0);
+// The golden passes that have no port in this batch (trmv_vulkan.h): the penumbra and the splat, the motions'
+// records, the diffuse light's a-trous, the glossy light's lobe filter and the cones; uploaded into `b`. Returns the
+// re-shaded history (empty without the cones), for the dump.
+RgbPlane TrmvVulkan::host_passes(const Frame& in, Buffers& b, const SurfacePlanes& surface, const TrmvWindows& win) {
   const TrmvParams& p = params_.trmv;
   const SvgfParams& edges = params_.svgf;
-  const TrmvWindows win = trmv_windows(p, h);
-  const int cur = frames_ & 1;
-
-  // 1. Upload: the host packs this frame's planes into the device's records.
-  const auto t0 = Clock::now();
-  const SurfacePlanes surface = SurfacePlanes::from_frame(in);
-  pack_surface(surface, *b.surface[cur]);
-  pack_vec2(surface.depth_grad, *b.depth_grad);
-  pack_vec2(surface.motion, *b.surface_motion);
-  pack_ids(surface.mesh, *b.mesh[cur]);
-  pack_rgb(xyz_plane(in, "position"), *b.position[cur]);
-  pack_rgb(xyz_plane(in, "geonormal"), *b.geonormal[cur]);
-  // The visibility, one value a pixel, travelling as (V, V, V).
-  const FloatPlane& v = in.float_channel("direct.visibility");
-  float* grey = b.noisy[kVisibility]->data();
-  for (size_t i = 0; i < v.data.size(); ++i) {
-    grey[4 * i] = grey[4 * i + 1] = grey[4 * i + 2] = v.data[i];
-    grey[4 * i + 3] = 0.0f;
-  }
-  times_[kTransferPass] += ms_since(t0);
-
-  // 2. On the host, the golden passes that have no port yet: the penumbra and the splat, the diffuse light's a-trous
-  //    and cones, the glossy light's lobe filter; their results are uploaded.
   const bool penumbra = p.shadow_filter == 1;
   TrmvSplatOutput& splat = host_.splat;
   splat = {};
@@ -205,8 +182,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   }
   const TrmvMotion vis_motion = trmv_visibility_motion(splat, surface.motion, p);
   pack_trmv_vector(vis_motion, *b.vector[kVisibility]);
-  const bool shadow = trmv_uses_shadow(p.motion), dual = trmv_uses_dual(p.motion);
-  if (shadow) {
+  if (trmv_uses_shadow(p.motion)) {
     pack_vec2(vis_motion.motion, *b.shadow_motion);
     pack_ids(splat.landed, *b.shadow_landed);
   }
@@ -231,7 +207,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   // The cone re-shading [TRMV21 Sec. 4.3, Eq. 9-11]: its re-shaded history is uploaded with the rest.
   seen_cones_ = std::move(cones_);  // replaced below by this frame's
   RgbPlane reshaded;
-  if (dual && p.cones != 0) {
+  if (trmv_uses_dual(p.motion) && p.cones != 0) {
     const auto r0 = Clock::now();
     const TrmvMotion dual_planes{xy_plane(in, "motion.dual"), in.uint_channel("motion.dual.valid"), {}, {}, {}};
     const TrmvConeFilter filter{p.diffuse_filter == 1, win.atrous_levels, win.shadow_radius, win.shadow_sigma};
@@ -245,6 +221,38 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
     pack_trmv_reshaded(with_reshaded, *b.reshaded);
     times_["trmv_reshade"] += ms_since(r0);
   }
+  return reshaded;
+}
+
+Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
+  times_.clear();
+  const int w = in.width(), h = in.height();
+  Buffers& b = frame_buffers(buffers_, context_, in, frames_ > 0);
+  const TrmvParams& p = params_.trmv;
+  const TrmvWindows win = trmv_windows(p, h);
+  const int cur = frames_ & 1;
+
+  // 1. Upload: the host packs this frame's planes into the device's records.
+  const auto t0 = Clock::now();
+  const SurfacePlanes surface = SurfacePlanes::from_frame(in);
+  pack_surface(surface, *b.surface[cur]);
+  pack_vec2(surface.depth_grad, *b.depth_grad);
+  pack_vec2(surface.motion, *b.surface_motion);
+  pack_ids(surface.mesh, *b.mesh[cur]);
+  pack_rgb(xyz_plane(in, "position"), *b.position[cur]);
+  pack_rgb(xyz_plane(in, "geonormal"), *b.geonormal[cur]);
+  // The visibility, one value a pixel, travelling as (V, V, V).
+  const FloatPlane& v = in.float_channel("direct.visibility");
+  float* grey = b.noisy[kVisibility]->data();
+  for (size_t i = 0; i < v.data.size(); ++i) {
+    grey[4 * i] = grey[4 * i + 1] = grey[4 * i + 2] = v.data[i];
+    grey[4 * i + 3] = 0.0f;
+  }
+  times_[kTransferPass] += ms_since(t0);
+
+  // 2. On the host, the golden passes that have no port yet; their results are uploaded.
+  const RgbPlane reshaded = host_passes(in, b, surface, win);
+  const bool shadow = trmv_uses_shadow(p.motion), dual = trmv_uses_dual(p.motion);
 
   // 3. One batch of dispatches, in TrmvFilter's order [TRMV21 Sec. 5].
   const uint32_t uw = uint32_t(w), uh = uint32_t(h);
@@ -256,7 +264,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
     shaders_.trmv_falloff(batch_, planes, *b.falloff,
                           trmv_falloff_push(uw, uh, has_prev ? uw : 0u, has_prev ? uh : 0u, true, p));
   }
-  record_components(shadow ? b.falloff.get() : nullptr, penumbra);
+  record_components(shadow ? b.falloff.get() : nullptr, p.shadow_filter == 1);
   batch_.run(submits_);
   ++frames_;
   for (const auto& [pass, ms] : batch_.times()) times_[pass] += ms;

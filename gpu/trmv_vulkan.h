@@ -28,7 +28,9 @@
 // TrmvFilter (--backend cpu). Buffers are made for the first frame's size; a later frame of another size throws.
 #pragma once
 
+#include "filters/surface_planes.h"
 #include "filters/trmv/cones.h"
+#include "filters/trmv/footprint.h"
 #include "filters/trmv/penumbra.h"
 #include "filters/trmv/reshade.h"
 #include "filters/trmv/splat.h"
@@ -58,6 +60,8 @@ class TrmvVulkan : public VulkanMethod {
   // Records the visibility's spatial filter and the three components' temporal blends and clean-ups into batch_;
   // `alpha_v` is the visibility's alpha plane, or null; `per_axis_sigma`: the penumbra filter's std per pixel.
   void record_components(const GpuBuffer* alpha_v, bool per_axis_sigma);
+  // The passes that run on the host (above), their results packed into `b`; returns the re-shaded history.
+  RgbPlane host_passes(const Frame& in, Buffers& b, const SurfacePlanes& surface, const TrmvWindows& win);
   void dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const;
 
   VulkanContext& context_;

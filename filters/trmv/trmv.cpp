@@ -181,10 +181,9 @@ const RgbPlane& TrmvFilter::filter_component(Component& c, const std::string& na
   return c.cleaned.color;
 }
 
-void TrmvFilter::prepare_visibility(const Frame& in) {
+PassRun* TrmvFilter::prepare_splat(const Frame& in) {
   using namespace layers;
   const TrmvParams& p = params_.trmv;
-  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
   // The penumbra's width W at every in-shadow pixel [LLK*19] (shadow_filter = 1), which the splat carries.
   const bool penumbra = p.shadow_filter == 1;
   PassRun* penumbra_run = nullptr;
@@ -201,23 +200,31 @@ void TrmvFilter::prepare_visibility(const Frame& in) {
   }
   // The splat: m^V (and W) spread over the shadow filter's window, on each receiving surface [TRMV21 Sec. 4.1].
   splat_ = {};
-  if (trmv_uses_splat(p)) {
-    splat_inputs_ = trmv_splat_planes(in, surface_, penumbra ? penumbra_.width : FloatPlane());
-    time_pass("trmv_splat", [&] { splat_ = trmv_splat_pass(splat_inputs_, windows_.splat_size); });
-    FloatPlane mx(in.width(), in.height()), my = mx, landed = mx;
-    for (size_t i = 0; i < mx.data.size(); ++i) {
-      mx.data[i] = splat_.motion.data[i].x;
-      my.data[i] = splat_.motion.data[i].y;
-      landed.data[i] = float(splat_.landed.data[i]);
-    }
-    log_pass("trmv_splat", "visibility")
-        .writes(kTrmvSplatX, std::move(mx))
-        .writes(kTrmvSplatY, std::move(my))
-        .writes(kTrmvSplatLanded, std::move(landed))
-        .pixel([this](int x, int y, Probe* probe) {
-          trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, probe);
-        });
+  if (!trmv_uses_splat(p)) return penumbra_run;
+  splat_inputs_ = trmv_splat_planes(in, surface_, penumbra ? penumbra_.width : FloatPlane());
+  time_pass("trmv_splat", [&] { splat_ = trmv_splat_pass(splat_inputs_, windows_.splat_size); });
+  FloatPlane mx(in.width(), in.height()), my = mx, landed = mx;
+  for (size_t i = 0; i < mx.data.size(); ++i) {
+    mx.data[i] = splat_.motion.data[i].x;
+    my.data[i] = splat_.motion.data[i].y;
+    landed.data[i] = float(splat_.landed.data[i]);
   }
+  log_pass("trmv_splat", "visibility")
+      .writes(kTrmvSplatX, std::move(mx))
+      .writes(kTrmvSplatY, std::move(my))
+      .writes(kTrmvSplatLanded, std::move(landed))
+      .pixel([this](int x, int y, Probe* probe) {
+        trmv_splat_pixel(splat_inputs_, windows_.splat_size, x, y, probe);
+      });
+  return penumbra_run;
+}
+
+void TrmvFilter::prepare_visibility(const Frame& in) {
+  using namespace layers;
+  const TrmvParams& p = params_.trmv;
+  visibility_.noisy = grey_plane(in.float_channel("direct.visibility"));
+  const bool penumbra = p.shadow_filter == 1;
+  PassRun* penumbra_run = prepare_splat(in);
   // 1. The spatial filter: the 31x31 separable joint bilateral [TRMV21 Sec. 5], or its std per pixel and axis from
   //    the splatted penumbra (penumbra.h).
   time_pass("trmv_spatial", [&] {

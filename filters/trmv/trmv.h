@@ -105,6 +105,9 @@ class TrmvFilter : public Method {
   // The visibility's splat, spatial filter, motion and alpha^V for this frame (the penumbra, splat, spatial and
   // falloff passes).
   void prepare_visibility(const Frame& in);
+  // Its penumbra (shadow_filter = 1) and splat passes; returns the penumbra's log entry (null without it), to which
+  // the spatial pass adds the std per axis.
+  PassRun* prepare_splat(const Frame& in);
   // The diffuse light's spatial filter and motion: the dual vector, with the cones' re-shaded history (the
   // a-trous and re-shade passes).
   void prepare_diffuse(const Frame& in);

@@ -14,7 +14,7 @@ Cli::Cli() {
       ->check(CLI::Range(0, 1024));
   commands = {add_render_command(app), add_filter_command(app), add_probe_command(app),
               add_eval_command(app),   add_bench_command(app),  add_compare_command(app),
-              add_check_command(app)};
+              add_check_command(app),  add_view_command(app)};
   // Each subcommand's --help names the option it shares with rtdr, after its own footer.
   for (const Command& c : commands)
     c.app->footer(c.app->get_footer() + (c.app->get_footer().empty() ? "" : "\n\n") +

@@ -3,6 +3,7 @@
 #include "app/backend.h"
 #include "app/commands.h"
 #include "app/preview.h"
+#include "app/probe_report.h"
 #include "app/sequence.h"
 #include "filters/passes.h"
 #include "core/atomic_file.h"
@@ -94,9 +95,7 @@ void run_probe(const ProbeOptions& o) {
   if (!found) throw Error("--frame " + std::to_string(o.frame) + " is not in --in '" + o.in + "'");
   const Probe probe = method->probe(o.pass, x, y, o.stream, o.level);
   if (o.json) {
-    const nlohmann::json out = {{"method", o.method}, {"frame", o.frame}, {"pixel", {x, y}}, {"pass", o.pass},
-                                {"stream", o.stream}, {"level", o.level}, {"terms", probe.json()}};
-    std::printf("%s\n", out.dump(2).c_str());
+    std::printf("%s", probe_json_text({o.method, o.frame, x, y, o.pass, o.stream, o.level}, probe).c_str());
   } else {
     std::printf("# %s %s, frame %d, pixel (%d, %d), stream %s, level %d\n# group | term = value | source\n%s",
                 o.method.c_str(), o.pass.c_str(), o.frame, x, y, o.stream.c_str(), o.level, probe.text().c_str());

@@ -26,6 +26,7 @@ Command add_probe_command(CLI::App& app);
 Command add_eval_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_check_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
 
 // The help of every --frames flag: "inclusive frame range A-B (0 <= A <= B <= 999999)" and then `more`.
 std::string frames_help(const std::string& more);

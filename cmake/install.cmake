@@ -41,6 +41,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${RTDR_DATA_DESTINAT
 install(DIRECTORY ${RTDR_SHADER_DIR}/ DESTINATION ${RTDR_DATA_DESTINATION}/shaders FILES_MATCHING PATTERN "*.spv")
 install(FILES ${PROJECT_SOURCE_DIR}/eval/charts.py ${PROJECT_SOURCE_DIR}/eval/chart_layout.py
               ${PROJECT_SOURCE_DIR}/eval/strip.py DESTINATION ${RTDR_DATA_DESTINATION}/eval)
+if(RTDR_VIEW)  # rtdr view's page (app/view_server.cpp finds it through core/data_path.h)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/app/view/ DESTINATION ${RTDR_DATA_DESTINATION}/view)
+endif()
 install(FILES ${PROJECT_SOURCE_DIR}/docs/buffers.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/shader_port_check DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples)
 

@@ -88,6 +88,10 @@ double Method::time_pass(const std::string& pass, const std::function<void()>& r
   return ms;
 }
 
+std::unique_ptr<Method> Method::clone() const {
+  throw Error("method " + name() + " on this back end cannot be copied");
+}
+
 InputChannels common_input_channels(const std::vector<std::string>& illumination) {
   InputChannels c;
   c.floats = {"depth.Z",  "depth.dX", "depth.dY", "normal.X",   "normal.Y",   "normal.Z",  "motion.X",

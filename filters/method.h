@@ -67,6 +67,11 @@ class Method {
   virtual Frame filter(const Frame& in, Frame* dump = nullptr) = 0;
   // Forgets all history (the next frame is treated as the first).
   virtual void reset() = 0;
+  // A copy of the method with its history: filtering the same next frame, the copy makes what this one would.
+  // The copy's pass log starts empty (this one's points at this one's planes), so a copy probes only after it has
+  // filtered a frame. `rtdr view` keeps, per frame, a copy that filtered it. A method that cannot be copied (a
+  // Vulkan back end's, whose state lives on the device) throws rtdr::Error.
+  virtual std::unique_ptr<Method> clone() const;
   // Re-runs `pass` at pixel (x, y) of the LAST filtered frame, on exactly the inputs that pass saw, with a
   // probe attached. `stream` is the stream or component for per-stream passes, `level` the level. By default
   // the pass log's (filters/pass_log.h); a back end that logs no golden function says so instead.
@@ -86,6 +91,10 @@ class Method {
   bool reads_shading_term() const;
 
  protected:
+  Method() = default;
+  // What clone() copies: the pass times, not the pass log (see clone()).
+  Method(const Method& other) : times_(other.times_) {}
+  Method& operator=(const Method&) = delete;
   // Runs `run` and adds its wall time to times_[pass]; returns the milliseconds.
   double time_pass(const std::string& pass, const std::function<void()>& run);
   // Logs a run of the pass declared as `name` (filters/passes.h) on `stream` at `level`, for its layers and its

@@ -41,6 +41,12 @@ PassRun& PassRun::pixel(Pixel pixel) {
   return *this;
 }
 
+std::vector<std::pair<const LayerDecl*, std::string>> PassRun::written() const {
+  std::vector<std::pair<const LayerDecl*, std::string>> names;
+  for (const Layer& l : layers_) names.emplace_back(l.layer, layer_name(*l.layer, stream_, level_));
+  return names;
+}
+
 void PassLog::begin(int width, int height) {
   width_ = width;
   height_ = height;

@@ -50,6 +50,8 @@ class PassRun {
   const std::string& stream() const { return stream_; }
   int level() const { return level_; }
   bool probed() const { return bool(pixel_); }
+  // The layers it wrote, in order: each one's declaration, and its name in the dump (layer_name, filters/passes.h).
+  std::vector<std::pair<const LayerDecl*, std::string>> written() const;
 
  private:
   friend class PassLog;

@@ -30,6 +30,10 @@ build/app/rtdr filter --method svgf --in out/asvgf-walkthrough/in --out out/asvg
 build/app/rtdr render --scene pillars --frames 0-11 --size 320x180 --spp 16 --out out/asvgf-walkthrough/ref
 ```
 
+To step through every pass of every frame yourself, and click any pixel to see every term of its equation
+(the gradient image, its reconstruction and alpha_i included), open the same frames in the browser
+(docs/view.md): `build/app/rtdr view --in out/asvgf-walkthrough/in --method asvgf --ref out/asvgf-walkthrough/ref`.
+
 The text describes this sequence. The test suite runs the notebook on a smaller one (tests/run_notebooks.sh),
 where a pillar is about one stratum wide and lambda stays small: the exercise asks why."""),
     new_code_cell(COMMON + """

@@ -19,6 +19,13 @@ filtered frames with their dumps). To make them yourself:
 ```sh
 build/app/rtdr render --scene pillars --frames 0-9 --size 320x180 --out out/walkthrough/in
 build/app/rtdr filter --method svgf --in out/walkthrough/in --out out/walkthrough/svgf --dump-passes
+```
+
+To step through every pass of every frame yourself, and click any pixel to see every term of its equation,
+open the same frames in the browser (docs/view.md):
+
+```sh
+build/app/rtdr view --in out/walkthrough/in --method svgf
 ```"""),
     new_code_cell(COMMON + """
 

@@ -46,7 +46,15 @@ build/app/rtdr render --scene occlusion --frames 39-40 --size 320x180 --out out/
 ```
 
 The test suite runs the notebook on 160x90 frames (tests/run_notebooks.sh); every number below is computed
-and printed, so it is the one of the frames you give it."""),
+and printed, so it is the one of the frames you give it.
+
+To see these vectors at work in TRMV's own passes, every pass of every frame, and click any pixel to see every
+term of its equation, open a sequence with the shading term in the browser (docs/view.md):
+
+```sh
+build/app/rtdr render --scene fence --frames 0-8 --size 320x180 --shading-samples 64 --out out/trmv-walkthrough/fence-seq
+build/app/rtdr view --in out/trmv-walkthrough/fence-seq --method trmv
+```"""),
     new_code_cell(COMMON + """
 
 FENCE = os.environ.get("RTDR_TRMV_FENCE", "out/trmv-walkthrough/fence")

@@ -185,6 +185,14 @@ nlohmann::json probe_json(const std::string& args, const fs::path& dir) {
   return doc;
 }
 
+// Line `number` (from 1) of a file, or "" past its end.
+std::string read_line(const fs::path& path, int number) {
+  std::istringstream lines(read_text(path));
+  std::string line;
+  for (int i = 0; i < number && std::getline(lines, line);) ++i;
+  return line;
+}
+
 std::set<std::string> term_names(const nlohmann::json& doc) {
   std::set<std::string> names;
   for (const nlohmann::json& t : doc.at("terms")) names.insert(t.at("name").get<std::string>());
@@ -218,6 +226,11 @@ TEST_CASE("rtdr probe prints the terms of a pass as JSON, or as text one term pe
     CHECK(t.at("value").is_array());
     CHECK(t.contains("group"));
     CHECK(t.contains("cite"));
+    // Where the golden function computed it: a note() of filters/svgf/atrous.cpp, at that line.
+    CHECK(t.at("file") == "filters/svgf/atrous.cpp");
+    const std::string line = read_line(fs::path(RTDR_SOURCE_DIR) / "filters/svgf/atrous.cpp", t.at("line").get<int>());
+    CHECK(line.find("note(") != std::string::npos);
+    CHECK(t.at("equations").is_array());
   }
   const std::set<std::string> names = term_names(doc);
   for (const char* w : {"w_z", "w_n", "w_l", "c_{i+1}(p)"}) {

@@ -1,14 +1,18 @@
 // docs/equations.md is a promise: for every equation, the function that implements it, the test that checks
 // it and the shaders that port it. This test keeps the promise true: every file it names exists, every function
 // named is defined in its file, every quoted test case is in its test file, and the implementing file and every
-// shader named cite the equation they claim to implement.
+// shader named cite the equation they claim to implement. And the TeX of the equations the probe's terms cite
+// (filters/equations.h, typeset by `rtdr view`) covers exactly the keys that the golden passes' note() calls cite.
+#include "filters/equations.h"
 #include "markdown_fixtures.h"
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -44,7 +48,67 @@ std::vector<Row> table_rows() {
   return rows;
 }
 
+// Every key that a note() call's string literals cite, over the golden passes in filters/, with a file citing it.
+// A note() call runs from "note(probe," to its ");" (a ';' inside a literal does not end it); its first literal is
+// the term's name, the others its cite.
+std::map<std::string, std::string> keys_cited_by_notes() {
+  std::map<std::string, std::string> keys;
+  const std::regex call("\\bnote\\(probe,((?:[^;\"]|\"(?:[^\"\\\\]|\\\\.)*\")*)\\);"), literal("\"((?:[^\"\\\\]|\\\\.)*)\"");
+  for (const auto& entry : fs::recursive_directory_iterator(fs::path(RTDR_SOURCE_DIR) / "filters")) {
+    if (entry.path().extension() != ".cpp") continue;
+    const std::string code = read(entry.path());
+    for (auto c = std::sregex_iterator(code.begin(), code.end(), call); c != std::sregex_iterator(); ++c) {
+      const std::string args = (*c)[1].str();
+      auto l = std::sregex_iterator(args.begin(), args.end(), literal);
+      if (l == std::sregex_iterator()) continue;
+      for (++l; l != std::sregex_iterator(); ++l)
+        for (const std::string& key : rtdr::cited_equations((*l)[1].str())) keys.emplace(key, entry.path().string());
+    }
+  }
+  return keys;
+}
+
 }  // namespace
+
+TEST_CASE("cited_equations reads the keys of the citations the probe's terms carry") {
+  using V = std::vector<std::string>;
+  CHECK(rtdr::cited_equations("[SVGF17 Eq. 3]") == V{"SVGF17 Eq. 3"});
+  CHECK(rtdr::cited_equations("[ASVGF18 Eq. 12, Eq. 13]") == V{"ASVGF18 Eq. 12", "ASVGF18 Eq. 13"});
+  CHECK(rtdr::cited_equations("[SVGF17 Sec. 4.1, 4.2]") == V{"SVGF17 Sec. 4.1", "SVGF17 Sec. 4.2"});
+  CHECK(rtdr::cited_equations("[TRMV21 Sec. 5, Eq. 7-9]") == V{"TRMV21 Sec. 5", "TRMV21 Eq. 7", "TRMV21 Eq. 8", "TRMV21 Eq. 9"});
+  CHECK(rtdr::cited_equations("[ASVGF18 Eq. 9] = [SVGF17 Eq. 4]") == V{"ASVGF18 Eq. 9", "SVGF17 Eq. 4"});
+  CHECK(rtdr::cited_equations("TRMV21 Eq. 1, between jittered screens") == V{"TRMV21 Eq. 1"});
+  CHECK(rtdr::cited_equations("Reinhard02 Sec. 3.1: world luminance") == V{"Reinhard02 Sec. 3.1"});
+  CHECK(rtdr::cited_equations("[EAW10] colour, sigma_rt 2^-i") == V{"EAW10"});
+  CHECK(rtdr::cited_equations("Karis14: clip towards the mean") == V{"Karis14"});
+  CHECK(rtdr::cited_equations("[SVGF17 Eq. 5]. Then [SVGF17 Eq. 5] again") == V{"SVGF17 Eq. 5"});
+  CHECK(rtdr::cited_equations("Malvar and Sullivan 2003").empty());
+  CHECK(rtdr::cited_equations("XSVGF17 Eq. 1").empty());
+}
+
+TEST_CASE("the typeset equations cover exactly the keys the golden passes' probe terms cite") {
+  const std::map<std::string, std::string> cited = keys_cited_by_notes();
+  REQUIRE(cited.size() >= 30);
+  std::set<std::string> typeset;
+  for (const rtdr::EquationTex& e : rtdr::equation_tex()) {
+    INFO(e.key);
+    CHECK(typeset.insert(std::string(e.key)).second);  // each key once
+    CHECK(cited.count(std::string(e.key)) == 1);        // and cited by some note(): no TeX for nothing
+    CHECK(rtdr::cited_equations(e.key) == std::vector<std::string>{std::string(e.key)});  // a key in its own form
+    // Balanced braces, and no character KaTeX reads as the end of the formula.
+    int depth = 0;
+    for (char ch : e.tex) {
+      depth += ch == '{' ? 1 : ch == '}' ? -1 : 0;
+      CHECK(depth >= 0);
+    }
+    CHECK(depth == 0);
+    CHECK(e.tex.find('$') == std::string_view::npos);
+  }
+  for (const auto& [key, file] : cited) {
+    INFO(key << ", cited in " << file);
+    CHECK(typeset.count(key) == 1);
+  }
+}
 
 TEST_CASE("docs/equations.md names functions, tests and shaders that exist, in files that cite the equation") {
   const std::vector<Row> rows = table_rows();

@@ -26,7 +26,7 @@ checks() {
   local rtdr="$prefix/bin/rtdr"
   [ -x "$rtdr" ] || fail "no $rtdr"
   for installed in share/rtdr/scenes/cornell.gltf share/rtdr/eval/charts.py share/rtdr/shaders/atrous.spv \
-    share/doc/rtdr/buffers.md share/doc/rtdr/examples/shader_port_check/CMakeLists.txt; do
+    share/rtdr/view/index.html share/doc/rtdr/buffers.md share/doc/rtdr/examples/shader_port_check/CMakeLists.txt; do
     [ -f "$prefix/$installed" ] || fail "$installed is not installed"
   done
   cd "$work"  # nothing is read from the working folder either
@@ -51,6 +51,19 @@ checks() {
   else
     cat "$work/vulkan.log"; fail "rtdr filter --backend vulkan from the prefix"
   fi
+
+  # 3b. rtdr view, from the prefix: it filters, listens, and serves its page (installed in share/rtdr/view).
+  "$rtdr" view --method svgf --in "$work/cornell" --port 0 > "$work/view.log" 2>&1 &
+  local view_pid=$! url=""
+  for _ in $(seq 1 300); do
+    url=$(grep -o 'http://127\.0\.0\.1:[0-9]*/' "$work/view.log" || true)
+    [ -z "$url" ] && kill -0 "$view_pid" 2> /dev/null || break
+    sleep 0.2
+  done
+  [ -n "$url" ] || { kill "$view_pid" 2> /dev/null; cat "$work/view.log"; fail "rtdr view from the prefix did not serve"; }
+  /usr/bin/python3 -c 'import sys, urllib.request; sys.exit(b"<canvas" not in urllib.request.urlopen(sys.argv[1], timeout=30).read())' \
+    "$url" || { kill "$view_pid"; fail "rtdr view from the prefix serves no page at $url"; }
+  kill "$view_pid"; wait "$view_pid" 2> /dev/null || true
 
   # 5. What the filters component brings.
   local targets="$prefix/lib/cmake/rtdr/rtdrFiltersTargets.cmake"
@@ -81,7 +94,7 @@ checks() {
   if grep -n -i -E "imath|openexr" "$work/exact.configure.log"; then
     fail "configuring a filters-only project mentions OpenEXR or Imath ($work/exact.configure.log)"
   fi
-  echo "ok: the installed rtdr rendered, evaluated and filtered without the source tree and the build folder;" \
+  echo "ok: the installed rtdr rendered, evaluated, filtered and served rtdr view's page without the source tree and the build folder;" \
     "the example built, its exact port matched and its off-by-one port was caught; filters needs no OpenEXR"
 }
 

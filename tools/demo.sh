@@ -57,3 +57,7 @@ else
   eval_run --scene static --methods svgf,asvgf,accum,eaw,none --frames 0-23 --ref-spp 256 --out out/demo/full/static
 fi
 printf '\ndemo: %d s after the build; pictures in out/demo/%s\n' $((SECONDS - start)) "$( ((full)) && echo full/)"
+if ((full == 0)); then
+  printf 'every pass of SVGF on the demo frames, in the browser (docs/view.md):\n  %s view --in out/demo/frames --method svgf\n' \
+    "$rtdr"
+fi

@@ -8,8 +8,9 @@ cd "$(dirname "$0")/.."
 
 # The Vulkan loader and the GL libraries beside it, unpacked into / there (the device tool's README).
 LOADERS=(libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
-# What CMakeLists.txt finds (tools/setup.sh's list, less the Python and the CPU Vulkan driver), and the shared
-# libraries those -dev packages link to that a bare machine lacks. Unpacked into a prefix there, never into /.
+# What CMakeLists.txt finds (tools/setup.sh's list, less the Python, the CPU Vulkan driver and rtdr view's packages:
+# gpu_device.sh builds with -DRTDR_VIEW=OFF), and the shared libraries those -dev packages link to that a bare machine
+# lacks. Unpacked into a prefix there, never into /.
 DEPS=(
   libglm-dev libtinygltf-dev libtinygltf2d libstb0 libstb-dev
   libopenexr-dev libopenexr-3-1-30 libimath-dev libimath-3-1-29 zlib1g-dev

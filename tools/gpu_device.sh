@@ -92,7 +92,7 @@ build() {
   cmake --build "$BUILD" -j "$(nproc)" "$@" >>"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
 }
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$DEPS/usr" \
-  -DRTDR_VULKAN_TESTS_ONLY=ON >"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
+  -DRTDR_VULKAN_TESTS_ONLY=ON -DRTDR_VIEW=OFF >"$LOGS/build.log" 2>&1 || { tail -40 "$LOGS/build.log"; pack; exit 1; }
 build --target rtdr
 echo "built: $BUILD/app/rtdr"
 

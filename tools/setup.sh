@@ -16,6 +16,9 @@ PACKAGES=(
   python3-numpy python3-matplotlib python3-openimageio python3-skimage jupyter-nbconvert python3-ipykernel
   # tools/farm.py: the render jobs of `rtdr eval --plan` on a Dask cluster (docs/scaling.md).
   python3-distributed
+  # rtdr view (docs/view.md): its HTTP server, the KaTeX its page typesets with, and the headless browser its test
+  # drives (tests/app_view_browser_test.py).
+  libcpp-httplib-dev libjs-katex chromium chromium-driver python3-selenium
 )
 
 bash tools/install_missing.sh setup "${PACKAGES[@]}"

@@ -72,6 +72,7 @@ class SvgfFilter : public Method {
   std::string name() const override { return options_.name; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
+  std::unique_ptr<Method> clone() const override { return std::make_unique<SvgfFilter>(*this); }
   std::vector<std::string> probe_passes() const override;
   InputChannels inputs() const override { return svgf_input_channels(options_); }
   std::vector<std::string> dump_channels() const override { return svgf_dump_channels(options_); }

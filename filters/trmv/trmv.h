@@ -75,6 +75,7 @@ class TrmvFilter : public Method {
   std::string name() const override { return "trmv"; }
   Frame filter(const Frame& in, Frame* dump) override;
   void reset() override;
+  std::unique_ptr<Method> clone() const override { return std::make_unique<TrmvFilter>(*this); }
   // `stream` is the component: "visibility" (or "direct", whose noisy part it is), "diffuse" or "glossy"; `level`
   // is unused. The pass log's probe (filters/pass_log.h).
   Probe probe(const std::string& pass, int x, int y, const std::string& stream, int level) const override;

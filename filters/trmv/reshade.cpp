@@ -50,7 +50,7 @@ bool trmv_cones_at(const TrmvConeHistory& prev, const ConeLayout& layout, glm::v
   note(probe, "n", n);
   for (int k = 0; k < kConeCount; ++k) {
     note(probe, "L'_k", transfer.values[size_t(k)], "[TRMV21 Sec. 4.3] transferred cone k");
-    note(probe, "f_k", transfer.share[size_t(k)], "[TRMV21 Fig. 7] its share in the source's hemisphere");
+    note(probe, "f_k", transfer.share[size_t(k)], "[TRMV21 Sec. 4.3] (Fig. 7) its share in the source's hemisphere");
     note(probe, "H_k", out[size_t(k)], "f_k L'_k + (1 - f_k) L~_k");
   }
   return true;

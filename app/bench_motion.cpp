@@ -1,6 +1,7 @@
 // rtdr bench --stage motion: what TRMV's motion vectors add to a 1-spp frame, per shipped scene at --size: the
 // median time of the shadow vector [TRMV21 Eq. 3] over every pixel (motion/shadow.h, from the frame's path record),
-// of its splat [TRMV21 Sec. 4.1] (motion/shadow_splat.h), of the dual vector [TRMV21 Eq. 6] (motion/dual.h, the
+// of its splat [TRMV21 Sec. 4.1] (filters/trmv/splat.h, the filter's, at the shadow filter's window for --size), of
+// the dual vector [TRMV21 Eq. 6] (motion/dual.h, the
 // previous frame's rasterization included) and of the glossy vector [TRMV21 Eq. 5] (motion/glossy.h), beside the
 // 1-spp frame's tracing loop
 // (trace_layers' own time, TraceStats::seconds), and their sum as a share of it; and the same share of TRMV's own
@@ -8,20 +9,23 @@
 // trace/shading.h). Target: at most 5 % (the paper's vectors cost under 0.23 ms on a GPU [TRMV21 Fig. 13], inside
 // its ray-generation shader). Also the share of pixels with a valid shadow vector.
 // With --backend vulkan (or cpu,vulkan), also the device time of the Vulkan ports of the shadow vector, its splat
-// (gpu/motion_shadow_gpu.h), the dual vector (gpu/motion_dual_gpu.h) and the glossy vector (gpu/motion_glossy_gpu.h),
-// the median of their dispatches' timestamps over the same runs, beside the CPU columns. A vk column is the shader's
-// dispatch alone: not the packing, upload or readback, nor the dual port's host part (the previous frame's
-// rasterization and every sample's object point, which the dual ms column includes).
+// (gpu/motion_shadow_gpu.h, gpu/trmv_splat_gpu.h), the dual vector (gpu/motion_dual_gpu.h) and the glossy vector
+// (gpu/motion_glossy_gpu.h), the median of their dispatches' timestamps over the same runs, beside the CPU columns.
+// A vk column is the shader's dispatch alone: not the packing, upload or readback, nor the dual port's host part
+// (the previous frame's rasterization and every sample's object point, which the dual ms column includes).
 #include "app/backend.h"
 #include "app/bench.h"
 #include "core/parallel.h"
+#include "filters/surface_planes.h"
+#include "filters/trmv/footprint.h"
+#include "filters/trmv/trmv.h"
 #include "gpu/motion_dual_gpu.h"
 #include "gpu/motion_glossy_gpu.h"
 #include "gpu/motion_shadow_gpu.h"
+#include "gpu/trmv_splat_gpu.h"
 #include "motion/dual.h"
 #include "motion/glossy.h"
 #include "motion/shadow.h"
-#include "motion/shadow_splat.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -70,9 +74,13 @@ MotionTimes time_motion(const BenchOptions& o, VulkanContext* context, const Sce
   std::vector<ShadowMotion> shadow;
   t.shadow = median_ms(o.warmup, o.runs, [&] { shadow = shadow_motion(g, frame); }, &bar);
   const std::vector<glm::vec2> surface = frame.get_vec2("motion");
-  t.splat = median_ms(
-      o.warmup, o.runs,
-      [&] { splat_shadow_motion(shadow, surface, g.vis.depth, size.width, size.height, kShadowSplatSize); }, &bar);
+  // The splat over the shadow filter's window at this size (filters/trmv/footprint.h), on the vectors just made.
+  Frame with_shadow = frame;
+  write_shadow_motion_layers(g, with_shadow);
+  const TrmvSplatPlanes splat_planes =
+      trmv_splat_planes(with_shadow, SurfacePlanes::from_frame(with_shadow), FloatPlane());
+  const int splat_size = trmv_windows(TrmvParams{}, size.height).splat_size;
+  t.splat = median_ms(o.warmup, o.runs, [&] { trmv_splat_pass(splat_planes, splat_size); }, &bar);
   t.dual = median_ms(o.warmup, o.runs, [&] { dual_motion(scene, g, surface); }, &bar);
   t.glossy = median_ms(o.warmup, o.runs, [&] { glossy_motion(g, frame); }, &bar);
   // The Vulkan ports on the same frame and vectors (device time only: packing and readback are not counted, nor the
@@ -81,12 +89,7 @@ MotionTimes time_motion(const BenchOptions& o, VulkanContext* context, const Sce
     t.shadow_vk =
         median_device_ms(o.warmup, o.runs, [&](double* ms) { shadow_motion_vulkan(*context, g, frame, ms); }, &bar);
     t.splat_vk = median_device_ms(
-        o.warmup, o.runs,
-        [&](double* ms) {
-          splat_shadow_motion_vulkan(*context, shadow, surface, g.vis.depth, size.width, size.height,
-                                     kShadowSplatSize, ms);
-        },
-        &bar);
+        o.warmup, o.runs, [&](double* ms) { trmv_splat_vulkan(*context, splat_planes, splat_size, ms); }, &bar);
     t.dual_vk = median_device_ms(
         o.warmup, o.runs, [&](double* ms) { dual_motion_vulkan(*context, scene, g, surface, ms); }, &bar);
     t.glossy_vk =

@@ -74,37 +74,65 @@ const std::vector<PassDecl>& filter_passes() {
        {&kTonemapped, &kDisplay},
        {"exposure"},
        "L_w, L = exposure L_w, L_d = L / (1 + L), and the display colour"},
+      {"trmv_penumbra", "filters/trmv/penumbra.cpp", "[LLK*19, TRMV21 Sec. 4.1]", PassScope::Frame,
+       "path.light and its instance, path.blocker and its instance; position, normal, id.instance; the trmv_splat "
+       "pass's W",
+       {&kTrmvPenumbraWidth, &kTrmvSigmaX, &kTrmvSigmaY},
+       {"shadow_filter", "spatial_radius", "spatial_sigma", "footprint_height"},
+       "(m_x, m_y), the light's diameter D and the penumbra's width W at the pixel"},
+      {"trmv_splat", "filters/trmv/splat.cpp", "[TRMV21 Sec. 4.1]", PassScope::Frame,
+       "motion.shadow and its validity; motion, id.instance, normal; the trmv_penumbra pass's W",
+       {&kTrmvSplatX, &kTrmvSplatY, &kTrmvSplatLanded},
+       {"splat_size", "spatial_radius", "footprint_height"},
+       "the window's side, how many vectors landed, the splatted m^V and W"},
       {"trmv_spatial", "filters/trmv/spatial.cpp", "[TRMV21 Sec. 5]", PassScope::Frame,
-       "direct.visibility, indirect.diffuse and indirect.glossy; depth.Z, depth.dX/dY, normal, id.mesh",
-       {&kTrmvVisibilitySpatial, &kTrmvDiffuseSpatial, &kTrmvGlossySpatial},
-       {"spatial_radius", "spatial_sigma", "sigma_z", "sigma_n", "epsilon"},
-       "the vertical 1-D pass at the pixel (the second of the two): per tap G(k), w_z, w_n and the value, then the "
-       "sum of the weights and the result"},
+       "direct.visibility; depth.Z, depth.dX/dY, normal, id.mesh; with shadow_filter = 1 the trmv_penumbra pass's "
+       "std",
+       {&kTrmvVisibilitySpatial},
+       {"spatial_radius", "spatial_sigma", "footprint_height", "shadow_filter", "sigma_z", "sigma_n", "epsilon"},
+       "the visibility's vertical 1-D pass at the pixel (the second of the two): per tap G(k), w_z, w_n and the "
+       "value, then the sum of the weights and the result"},
       {"trmv_falloff", "filters/trmv/falloff.cpp", "[TRMV21 Eq. 4]", PassScope::Frame,
-       "motion.shadow_splat and its validity; position, geonormal, id.mesh; last frame's position and id.mesh",
+       "the trmv_splat pass's motion and where it landed; position, geonormal, id.mesh, motion; last frame's "
+       "position, geonormal and id.mesh",
        {&kTrmvTheta, &kTrmvAlphaV},
-       {"alpha", "falloff_sigma", "motion"},
-       "x^V_{i-1}, the previous surface point s^V_{i-1} there, s_i and n(s_i), theta, G and alpha^V"},
+       {"alpha", "falloff_sigma", "falloff_carry", "motion"},
+       "x^V_{i-1}, the previous surface point s^V_{i-1} there, s_i and n(s_i) (carried back or not), theta, G and "
+       "alpha^V"},
+      {"trmv_atrous", "filters/trmv/atrous.cpp", "[TRMV21 Sec. 5]", PassScope::Frame,
+       "indirect.diffuse; depth.Z, depth.dX/dY, normal, id.mesh",
+       {&kTrmvDiffuseSpatial},
+       {"diffuse_filter", "atrous_levels", "footprint_height", "sigma_z", "sigma_n", "epsilon"},
+       "the diffuse light's a-trous level --level (the last by default) at the pixel: per tap w_z and w_n, the sum "
+       "and the result (diffuse_filter = 0: the shadow filter's bilateral, not probed)"},
       {"trmv_reshade", "filters/trmv/reshade.cpp", "[TRMV21 Eq. 11]", PassScope::Frame,
        "path.direction, path.incoming, path.pdf; motion.dual and its validity; normal, depth, id.mesh, motion; last "
-       "frame's cones and normals",
+       "frame's cones, normals and G-buffer",
        {&kTrmvDiffuseReshaded},
-       {"alpha", "motion", "cones", "cone_half_angle", "spatial_radius", "spatial_sigma"},
-       "x^O, the normal there and the pixel's, the six transferred cones L'_k and the re-shaded L_o"},
+       {"alpha", "motion", "cones", "cone_half_angle", "cone_transfer", "diffuse_filter", "atrous_levels"},
+       "x^O, the normal there and the pixel's, the six transferred cones L'_k, their shares f_k, the blended H_k "
+       "and the re-shaded L_o"},
+      {"trmv_reflection", "filters/trmv/reflection.cpp", "[LLK*19, TRMV21 Sec. 5]", PassScope::Frame,
+       "indirect.glossy; glossy.footprint and its validity; depth.Z, depth.dX/dY, normal, id.mesh",
+       {&kTrmvGlossySpatial},
+       {"glossy_filter", "glossy_radius", "footprint_height", "sigma_z", "sigma_n", "epsilon"},
+       "the window, the footprint's precision S^-1, the sum of the weights and the result (glossy_filter = 0: the "
+       "shadow filter's bilateral, not probed)"},
       {"trmv_temporal", "filters/trmv/temporal.cpp", "[TRMV21 Eq. 2, Sec. 5]", PassScope::Frame,
-       "the trmv_spatial pass's c~; the component's motion (visibility: motion.shadow_splat or motion; diffuse: "
-       "motion.dual or motion, and the trmv_reshade pass's history; glossy: motion.glossy or motion); last frame's "
-       "history and id.mesh; visibility: the trmv_falloff pass's alpha^V",
+       "the component's c~ (trmv_spatial, trmv_atrous, trmv_reflection); its motion (visibility: the trmv_splat "
+       "pass's or motion; diffuse: motion.dual or motion, and the trmv_reshade pass's history; glossy: "
+       "motion.glossy, motion.glossy_mean or motion) and each vector's history test; last frame's history and "
+       "G-buffer; visibility: the trmv_falloff pass's alpha^V",
        {&kTrmvVisibilityTemporal, &kTrmvVisibilityClamped, &kTrmvDiffuseTemporal, &kTrmvDiffuseClamped,
         &kTrmvGlossyTemporal, &kTrmvGlossyClamped},
-       {"alpha", "clamp_gamma", "clamp_radius", "motion"},
-       "x_{i-1}, each bilinear tap and its weight (or the re-shaded history), the fetched history, the window's mu "
-       "and sigma, the clamped history, alpha and cbar_i"},
+       {"alpha", "clamp_gamma", "clamp_radius", "motion", "history_test", "shadow_receiver_test", "glossy_draw"},
+       "x_{i-1}, the history test, the kept bilinear weights (or the re-shaded history), the fetched history, the "
+       "window's mu and sigma, the clamped history, alpha and cbar_i"},
       {"trmv_cleanup", "filters/trmv/cleanup.cpp", "[TRMV21 Eq. 7, Eq. 8, Sec. 5]", PassScope::Frame,
        "the trmv_temporal pass's cbar_i, fetched and clamped history; alpha^V; depth.Z, normal, id.mesh",
        {&kTrmvWeightA, &kTrmvVisibilityWeightC, &kTrmvDiffuseWeightC, &kTrmvGlossyWeightC, &kTrmvVisibilityCleaned,
         &kTrmvDiffuseCleaned, &kTrmvGlossyCleaned},
-       {"alpha", "cleanup_size", "cleanup_sigma_max", "cleanup_eps", "history_after_cleanup"},
+       {"alpha", "cleanup_size", "footprint_height", "cleanup_sigma_max", "cleanup_eps", "history_after_cleanup"},
        "w_A, w_C and the clean-up's std at the pixel"},
       {"taa", "filters/taa/taa.cpp", "[Karis14]", PassScope::Frame,
        "the tone-mapped colour, last frame's display, motion",

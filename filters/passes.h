@@ -107,6 +107,25 @@ inline constexpr LayerDecl kAlpha{"filter.<s>.alpha", LayerType::Scalar, LayerUs
                                   "[ASVGF18 Eq. 15, Sec. 3.5]"};
 // TRMV's passes [TRMV21 Sec. 5] (filters/trmv/): one layer per component, visibility (scalar), diffuse and
 // glossy indirect light (RGB).
+inline constexpr LayerDecl kTrmvPenumbraWidth{"filter.trmv.visibility.penumbra", LayerType::Scalar, LayerUse::Dump,
+                                              "W = D (d_r - d_b) / d_b, the penumbra's width at an in-shadow "
+                                              "pixel, metres; 0 where the shadow ray reached the light",
+                                              "[LLK*19, TRMV21 Sec. 4.1]"};
+inline constexpr LayerDecl kTrmvSigmaX{"filter.trmv.visibility.sigma_x", LayerType::Scalar, LayerUse::Dump,
+                                       "the penumbra filter's std across, pixels: the splatted W / (6 m_x)",
+                                       "[LLK*19, TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvSigmaY{"filter.trmv.visibility.sigma_y", LayerType::Scalar, LayerUse::Dump,
+                                       "the penumbra filter's std down, pixels: the splatted W / (6 m_y)",
+                                       "[LLK*19, TRMV21 Sec. 5]"};
+inline constexpr LayerDecl kTrmvSplatX{"filter.trmv.visibility.splat_x", LayerType::Scalar, LayerUse::Dump,
+                                       "the splatted shadow motion, x, pixels: the mean of the m^V that landed, "
+                                       "else the surface motion",
+                                       "[TRMV21 Sec. 4.1]"};
+inline constexpr LayerDecl kTrmvSplatY{"filter.trmv.visibility.splat_y", LayerType::Scalar, LayerUse::Dump,
+                                       "the splatted shadow motion, y, pixels", "[TRMV21 Sec. 4.1]"};
+inline constexpr LayerDecl kTrmvSplatLanded{"filter.trmv.visibility.splat_landed", LayerType::Scalar, LayerUse::Dump,
+                                            "1 where a valid m^V of the pixel's receiving surface landed, else 0",
+                                            "[TRMV21 Sec. 4.1]"};
 inline constexpr LayerDecl kTrmvVisibilitySpatial{"filter.trmv.visibility.spatial", LayerType::Scalar, LayerUse::Dump,
                                                   "c~, the spatially filtered 1-spp visibility", "[TRMV21 Sec. 5]"};
 inline constexpr LayerDecl kTrmvDiffuseSpatial{"filter.trmv.diffuse.spatial", LayerType::Rgb, LayerUse::Dump,

@@ -68,8 +68,13 @@ std::vector<GlossyMotion> glossy_motion_vulkan(VulkanContext& context, const Fra
   std::vector<GlossyMotion> out(records.size());
   for (size_t i = 0; i < records.size(); ++i) {
     const GlossyMotionRecord& r = records[i];
-    if (r.valid == 0u) continue;  // (0, 0), not valid, as glossy_motion_pixel leaves it
     GlossyMotion& m = out[i];
+    if (r.has_footprint != 0u) {  // the current footprint, as glossy_motion_pixel makes it
+      m.footprint_axes = glm::mat2(r.b1, r.b2);
+      m.footprint = m.footprint_axes * glm::transpose(m.footprint_axes);
+      m.has_footprint = true;
+    }
+    if (r.valid == 0u) continue;  // (0, 0), not valid, as glossy_motion_pixel leaves it
     m.mu = r.mu, m.motion = r.motion, m.valid = true;
     m.axes = glm::mat2(r.a1, r.a2);
     m.Sigma = m.axes * glm::transpose(m.axes);  // a1 a1^T + a2 a2^T, as glossy_motion_pixel

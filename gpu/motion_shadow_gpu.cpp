@@ -1,5 +1,4 @@
-// The Vulkan ports of TRMV's shadow motion vector and its splat. See motion_shadow_gpu.h; the shaders are
-// motion/shadow.comp and motion/shadow_splat.comp.
+// The Vulkan port of TRMV's shadow motion vector. See motion_shadow_gpu.h; the shader is motion/shadow.comp.
 #include "gpu/motion_shadow_gpu.h"
 
 #include "core/error.h"
@@ -7,7 +6,6 @@
 #include "gpu/motion_port.h"
 #include "gpu/svgf_planes.h"
 #include "motion/shadow_shared.h"
-#include "motion/shadow_splat_shared.h"
 
 #include <cstdint>
 #include <string>
@@ -15,13 +13,10 @@
 
 namespace rtdr {
 
-// Both passes' bindings fit the limits the context was chosen for (gpu/vulkan_context.h).
+// The pass's bindings fit the limits the context was chosen for (gpu/vulkan_context.h).
 static_assert(kShadowMotionTexelBindings + kShadowMotionStorageBindings <= kStorageInputBindings &&
                   kShadowMotionTexelBindings <= kTexelInputBindings,
               "the shadow motion port's bindings fit every context");
-static_assert(kShadowSplatTexelBindings + kShadowSplatStorageBindings <= kStorageInputBindings &&
-                  kShadowSplatTexelBindings <= kTexelInputBindings,
-              "the splat port's bindings fit every context");
 
 std::vector<ShadowMotion> shadow_motion_vulkan(VulkanContext& context, const FrameGeometry& g, const Frame& frame,
                                                double* ms) {
@@ -64,34 +59,6 @@ std::vector<ShadowMotion> shadow_motion_vulkan(VulkanContext& context, const Fra
            &push, w, h, ms);
 
   return unpack_records<ShadowMotion>(*result, w, h);
-}
-
-std::vector<SplatMotion> splat_shadow_motion_vulkan(VulkanContext& context, const std::vector<ShadowMotion>& shadow,
-                                                    const std::vector<glm::vec2>& surface_motion,
-                                                    const std::vector<float>& depth, int width, int height, int size,
-                                                    double* ms) {
-  check_splat_inputs(shadow, surface_motion, depth, width, height, size);  // splat_shadow_motion's checks
-  const size_t pixels = size_t(width) * size_t(height);
-  if (pixels == 0) return {};
-
-  // (m^V, valid) and (surface motion, depth) as (x, y, z, 0) records.
-  RgbPlane shadow_records(width, height), surface_records(width, height);
-  for (size_t i = 0; i < pixels; ++i) {
-    shadow_records.data[i] = glm::vec3(shadow[i].motion, shadow[i].valid ? 1.0f : 0.0f);
-    surface_records.data[i] = glm::vec3(surface_motion[i], depth[i]);
-  }
-  const auto shadow_buffer = plane_buffer(context, width, height, TexelFormat::RGBA32F),
-             surface_buffer = plane_buffer(context, width, height, TexelFormat::RGBA32F),
-             result = plane_buffer(context, width, height, TexelFormat::RGBA32F);
-  pack_rgb(shadow_records, *shadow_buffer);
-  pack_rgb(surface_records, *surface_buffer);
-
-  const MotionPort port(context, "motion_shadow_splat", kShadowSplatTexelBindings, kShadowSplatStorageBindings,
-                        sizeof(ShadowSplatPush));
-  const ShadowSplatPush push{.width = uint32_t(width), .height = uint32_t(height), .size = size, .unused = 0u};
-  port.run(context, {shadow_buffer.get(), surface_buffer.get(), result.get()}, &push, width, height, ms);
-
-  return unpack_records<SplatMotion>(*result, width, height);
 }
 
 }  // namespace rtdr

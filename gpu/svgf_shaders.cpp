@@ -73,14 +73,14 @@ TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width,
 }
 
 // The push constants of one 1-D pass along `axis` (trmv_spatial_axis's arguments).
-TrmvSpatialPush trmv_spatial_push(int w, int h, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
+TrmvSpatialPush trmv_spatial_push(int w, int h, glm::ivec2 axis, int radius, uint32_t sigma_plane, float sigma_all,
                                   const SvgfParams& edges) {
   return TrmvSpatialPush{.width = uint32_t(w),
                          .height = uint32_t(h),
                          .axis_x = axis.x,
                          .axis_y = axis.y,
                          .radius = radius,
-                         .has_sigma_plane = sigma_plane ? 1u : 0u,
+                         .has_sigma_plane = sigma_plane,
                          .sigma = sigma_all,
                          .sigma_z = edges.sigma_z,
                          .sigma_n = edges.sigma_n,
@@ -125,18 +125,21 @@ TaaPush taa_push(uint32_t width, uint32_t height, const TaaParams& params, const
 }
 
 TrmvTemporalPush trmv_temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
-                                    bool has_valid, bool has_reshaded, bool has_alpha, const TrmvParams& params) {
+                                    bool has_reshaded, bool has_alpha, const TrmvParams& params,
+                                    const SvgfParams& svgf) {
   return TrmvTemporalPush{.width = width,
                           .height = height,
                           .prev_width = prev_width,
                           .prev_height = prev_height,
                           .has_history = prev_width > 0 ? 1u : 0u,
-                          .has_valid = has_valid ? 1u : 0u,
                           .has_reshaded = has_reshaded ? 1u : 0u,
                           .has_alpha = has_alpha ? 1u : 0u,
+                          .same_surface = params.history_test != 0 ? 1u : 0u,
                           .alpha = params.alpha,
                           .clamp_gamma = params.clamp_gamma,
-                          .clamp_radius = params.clamp_radius};
+                          .clamp_radius = params.clamp_radius,
+                          .temporal_depth_relative = svgf.temporal_depth_relative,
+                          .temporal_normal_cosine = svgf.temporal_normal_cosine};
 }
 
 TrmvCleanupPush trmv_cleanup_push(uint32_t width, uint32_t height, bool has_alpha_v, const TrmvParams& params) {
@@ -157,7 +160,8 @@ TrmvFalloffPush trmv_falloff_push(uint32_t width, uint32_t height, uint32_t prev
                          .has_prev = prev_width > 0 ? 1u : 0u,
                          .has_valid = has_valid ? 1u : 0u,
                          .alpha = params.alpha,
-                         .falloff_sigma = params.falloff_sigma};
+                         .falloff_sigma = params.falloff_sigma,
+                         .falloff_carry = params.falloff_carry != 0 ? 1u : 0u};
 }
 
 SvgfShaders::SvgfShaders(VulkanContext& context)
@@ -259,15 +263,15 @@ void SvgfShaders::trmv_temporal(ComputeBatch& batch, const TrmvTemporalPlanes& i
                                 const GpuBuffer& fetched_out, const GpuBuffer& clamped_out,
                                 const TrmvTemporalPush& push) const {
   batch.dispatch(trmv_temporal_,
-                 {in.filtered, in.mesh, in.motion, in.valid, in.reshaded, in.prev_color, in.prev_mesh, in.alpha,
-                  &color_alpha_out, &fetched_out, &clamped_out},
+                 {in.filtered, in.mesh, in.surface, in.depth_grad, in.vector, in.reshaded, in.prev_color, in.prev_mesh,
+                  in.prev_surface, in.alpha, &color_alpha_out, &fetched_out, &clamped_out},
                  &push, groups_x(push.width), groups_y(push.height), "trmv_temporal");
 }
 
 void SvgfShaders::trmv_spatial(ComputeBatch& batch, const std::vector<const GpuBuffer*>& in,
                                const GpuBuffer& surface, const GpuBuffer& depth_grad,
                                const std::vector<const GpuBuffer*>& out, const TrmvSpatialPush& push,
-                               const char* label) const {
+                               const char* label, const GpuBuffer* axis_sigma) const {
   static_assert(kTrmvSpatialComponentsConstant == kAtrousKernelSizeConstant, "constant_id 2 after the workgroup shape");
   if (in.size() != out.size() || (in.size() != 1 && in.size() != size_t(kTrmvSpatialMaxComponents)))
     throw Error("trmv_spatial: filters 1 or 3 planes, got " + std::to_string(in.size()) + " in and " +
@@ -277,8 +281,9 @@ void SvgfShaders::trmv_spatial(ComputeBatch& batch, const std::vector<const GpuB
     return m < planes.size() ? planes[m] : planes[0];
   };
   batch.dispatch(in.size() == 1 ? trmv_spatial_ : trmv_spatial_3_,
-                 {plane(in, 0), plane(in, 1), plane(in, 2), &surface, &depth_grad, plane(out, 0), plane(out, 1),
-                  plane(out, 2)},
+                 {plane(in, 0), plane(in, 1), plane(in, 2), &surface, &depth_grad,
+                  axis_sigma ? axis_sigma : &depth_grad,  // none: an RG32F plane that is never read
+                  plane(out, 0), plane(out, 1), plane(out, 2)},
                  &push, groups_x(push.width), groups_y(push.height), label);
 }
 
@@ -292,8 +297,8 @@ void SvgfShaders::trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, cons
 void SvgfShaders::trmv_falloff(ComputeBatch& batch, const TrmvFalloffPlanes& in, const GpuBuffer& theta_alpha_out,
                                const TrmvFalloffPush& push) const {
   batch.dispatch(trmv_falloff_,
-                 {in.position, in.normal, in.mesh, in.motion, in.valid, in.prev_position, in.prev_mesh,
-                  &theta_alpha_out},
+                 {in.position, in.normal, in.mesh, in.surface_motion, in.motion, in.valid, in.prev_position,
+                  in.prev_normal, in.prev_mesh, &theta_alpha_out},
                  &push, groups_x(push.width), groups_y(push.height), "trmv_falloff");
 }
 

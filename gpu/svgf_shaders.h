@@ -52,28 +52,32 @@ struct HistoryPlanes {
   const GpuBuffer* mesh;
 };
 
-// What TRMV's temporal pass reads (filters/trmv/temporal_shared.h's bindings 0-6); an optional plane that is empty
+// What TRMV's temporal pass reads (filters/trmv/temporal_shared.h's bindings 0-9); an optional plane that is empty
 // is one unread texel, and the push constants say so.
 struct TrmvTemporalPlanes {
   const GpuBuffer* filtered;        // c~_i
   const GpuBuffer* mesh;            // id.mesh
-  const GpuBuffer* motion;          // m
-  const GpuBuffer* valid;           // the motion's validity
+  const GpuBuffer* surface;         // (n, z)
+  const GpuBuffer* depth_grad;      // grad z
+  const GpuBuffer* vector;          // (m, code): the motion, its validity and history test
   const GpuBuffer* reshaded;        // (re-shaded history, its validity)
   const GpuBuffer* prev_color;      // cbar_{i-1}
   const GpuBuffer* prev_mesh;       // the previous id.mesh
+  const GpuBuffer* prev_surface;    // the previous (n, z)
   const GpuBuffer* alpha;           // the alpha plane, (theta, alpha^V)
 };
 
-// What TRMV's falloff pass reads (filters/trmv/falloff_shared.h's bindings 0-6); an optional plane that is empty
+// What TRMV's falloff pass reads (filters/trmv/falloff_shared.h's bindings 0-8); an optional plane that is empty
 // is one unread texel, and the push constants say so.
 struct TrmvFalloffPlanes {
   const GpuBuffer* position;       // s_i
   const GpuBuffer* normal;         // n(s_i)
   const GpuBuffer* mesh;           // id.mesh
+  const GpuBuffer* surface_motion; // m, the surface motion
   const GpuBuffer* motion;         // m^V
   const GpuBuffer* valid;          // the shadow motion's validity
   const GpuBuffer* prev_position;  // the previous frame's position
+  const GpuBuffer* prev_normal;    // the previous frame's geonormal
   const GpuBuffer* prev_mesh;      // the previous id.mesh
 };
 
@@ -105,9 +109,10 @@ TemporalPush temporal_push(uint32_t width, uint32_t height, uint32_t prev_width,
 VariancePush variance_push(uint32_t width, uint32_t height, const SvgfParams& params);
 AtrousPush atrous_push(uint32_t width, uint32_t height, int level, const SvgfParams& params, bool keep_prefiltered);
 // The push constants of one 1-D pass of TRMV's joint bilateral along `axis` (trmv_spatial_axis's arguments): the
-// spatial filter's sigma everywhere, or each pixel's own std (`sigma_plane`, the clean-up's).
-TrmvSpatialPush trmv_spatial_push(int width, int height, glm::ivec2 axis, int radius, bool sigma_plane, float sigma_all,
-                                  const SvgfParams& edges);
+// spatial filter's sigma everywhere (`sigma_plane` 0), each pixel's own std in its record's w (1, the clean-up's), or
+// in the std-per-axis plane (2, the penumbra filter's) (filters/trmv/spatial_shared.h).
+TrmvSpatialPush trmv_spatial_push(int width, int height, glm::ivec2 axis, int radius, uint32_t sigma_plane,
+                                  float sigma_all, const SvgfParams& edges);
 // The other ports' push constants, one function per block likewise, which the pipelines (svgf_vulkan.cpp,
 // trmv_vulkan.cpp) and the per-pass ports (modulate_gpu.cpp, tonemap_gpu.cpp, taa_gpu.cpp, trmv_*_gpu.cpp) all
 // call. A previous frame of 0 x 0 means none: no history (TRMV's temporal pass and falloff, and TAA with
@@ -116,14 +121,16 @@ ModulatePush modulate_push(uint32_t width, uint32_t height);
 TonemapPush tonemap_push(uint32_t width, uint32_t height, const TonemapParams& params);
 TaaPush taa_push(uint32_t width, uint32_t height, const TaaParams& params, const TaaJitter& jitter, bool has_history);
 TrmvTemporalPush trmv_temporal_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
-                                    bool has_valid, bool has_reshaded, bool has_alpha, const TrmvParams& params);
+                                    bool has_reshaded, bool has_alpha, const TrmvParams& params,
+                                    const SvgfParams& svgf);
 TrmvCleanupPush trmv_cleanup_push(uint32_t width, uint32_t height, bool has_alpha_v, const TrmvParams& params);
 TrmvFalloffPush trmv_falloff_push(uint32_t width, uint32_t height, uint32_t prev_width, uint32_t prev_height,
                                   bool has_valid, const TrmvParams& params);
 
 // Runs one pass on its own (the per-pass ports of gpu/*_gpu.h): `record(shaders, batch)` records its dispatch,
-// then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time).
-template <class Record>
+// then the batch runs and waits, and *ms receives its device time (see ComputeBatch::total_time). `Shaders` is
+// the pipelines' class: SvgfShaders, or TrmvShaders (gpu/trmv_shaders.h).
+template <class Shaders = SvgfShaders, class Record>
 void run_pass(VulkanContext& context, Record&& record, double* ms);
 
 class SvgfShaders {
@@ -160,10 +167,12 @@ class SvgfShaders {
                     const TrmvFalloffPush& push) const;
   // [TRMV21 Sec. 5]: one 1-D pass of the joint bilateral, (c, std) -> (c', std) (filters/trmv/spatial_shared.h),
   // of one plane, or of three side by side (`in` and `out` of one size, 1 or 3; throws rtdr::Error otherwise).
-  // `label`: the pass its time counts to (the clean-up's bilateral is part of "trmv_cleanup").
+  // `label`: the pass its time counts to (the clean-up's bilateral is part of "trmv_cleanup"). `axis_sigma`: the
+  // (sigma_x, sigma_y) plane that push.has_sigma_plane = 2 reads.
   void trmv_spatial(ComputeBatch& batch, const std::vector<const GpuBuffer*>& in, const GpuBuffer& surface,
                     const GpuBuffer& depth_grad, const std::vector<const GpuBuffer*>& out,
-                    const TrmvSpatialPush& push, const char* label = "trmv_spatial") const;
+                    const TrmvSpatialPush& push, const char* label = "trmv_spatial",
+                    const GpuBuffer* axis_sigma = nullptr) const;
   // [TRMV21 Eq. 7, Eq. 8, Sec. 5]: cbar_i and the histories -> (cbar_i, std) and (w_A, w_C, std)
   // (filters/trmv/cleanup_shared.h).
   void trmv_cleanup(ComputeBatch& batch, const GpuBuffer& color, const GpuBuffer& fetched_alpha_v,
@@ -204,9 +213,9 @@ class SvgfShaders {
   ComputePipeline asvgf_adaptive_alpha_, asvgf_gradient_image_, asvgf_gradient_atrous_;
 };
 
-template <class Record>
+template <class Shaders, class Record>
 void run_pass(VulkanContext& context, Record&& record, double* ms) {
-  const SvgfShaders shaders(context);
+  const Shaders shaders(context);
   ComputeBatch batch(context, 1);
   record(shaders, batch);
   batch.run();

@@ -31,25 +31,29 @@ TrmvFalloffOutput trmv_falloff_vulkan(VulkanContext& context, const TrmvReceiver
   const auto position = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              normal = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              mesh = plane_buffer(context, w, h, TexelFormat::R32UI),
+             surface_motion = plane_buffer(context, w, h, TexelFormat::RG32F),
              motion = plane_buffer(context, w, h, TexelFormat::RG32F),
              valid = plane_buffer(context, shadow.valid.width, shadow.valid.height, TexelFormat::R32UI),
              prev_position = plane_buffer(context, pw, ph, TexelFormat::RGBA32F),
+             prev_normal = plane_buffer(context, pw, ph, TexelFormat::RGBA32F),
              prev_mesh = plane_buffer(context, pw, ph, TexelFormat::R32UI);
   pack_rgb(receiver.position, *position);
   pack_rgb(receiver.normal, *normal);
   pack_ids(receiver.mesh, *mesh);
+  pack_vec2(receiver.motion, *surface_motion);
   pack_vec2(shadow.motion, *motion);
   if (has_valid) pack_ids(shadow.valid, *valid);
   if (has_prev) {
     pack_rgb(prev.position, *prev_position);
+    pack_rgb(prev.normal, *prev_normal);
     pack_ids(prev.mesh, *prev_mesh);
   }
   // (theta, alpha^V) per pixel.
   const auto theta_alpha = plane_buffer(context, w, h, TexelFormat::RG32F);
 
   const TrmvFalloffPush push = trmv_falloff_push(uint32_t(w), uint32_t(h), uint32_t(pw), uint32_t(ph), has_valid, params);
-  const TrmvFalloffPlanes planes{position.get(), normal.get(),        mesh.get(),     motion.get(),
-                                 valid.get(),    prev_position.get(), prev_mesh.get()};
+  const TrmvFalloffPlanes planes{position.get(), normal.get(),        mesh.get(),        surface_motion.get(), motion.get(),
+                                 valid.get(),    prev_position.get(), prev_normal.get(), prev_mesh.get()};
   run_pass(
       context,
       [&](const SvgfShaders& shaders, ComputeBatch& batch) { shaders.trmv_falloff(batch, planes, *theta_alpha, push); },

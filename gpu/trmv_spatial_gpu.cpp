@@ -36,27 +36,36 @@ Guides pack_guides(VulkanContext& context, const SurfacePlanes& s, int w, int h)
 
 }  // namespace
 
-RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s,
-                             const TrmvParams& params, const SvgfParams& edges, double* ms) {
+RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s, int radius,
+                             float sigma, const SvgfParams& edges, double* ms, const FloatPlane& sigma_x,
+                             const FloatPlane& sigma_y) {
   const int w = c.width, h = c.height;
   check_trmv_surface_sizes(w, h, s, "trmv spatial filter");
-  check_radius(params.spatial_radius, "trmv_spatial_vulkan");
+  check_radius(radius, "trmv_spatial_vulkan");
+  const bool per_axis = sigma_x.width != 0;
+  if (per_axis && (!has_size(sigma_x, w, h) || !has_size(sigma_y, w, h)))
+    throw Error("trmv spatial filter: the std planes are not the frame's size");
   if (c.data.empty()) return RgbPlane(w, h);
   const Guides g = pack_guides(context, s, w, h);
   const auto input = plane_buffer(context, w, h, TexelFormat::RGBA32F),
              rows = plane_buffer(context, w, h, TexelFormat::RGBA32F),
-             out = plane_buffer(context, w, h, TexelFormat::RGBA32F);
+             out = plane_buffer(context, w, h, TexelFormat::RGBA32F),
+             axis_sigma = plane_buffer(context, per_axis ? w : 1, per_axis ? h : 1, TexelFormat::RG32F);
   pack_rgb(c, *input);
+  if (per_axis)
+    for (size_t i = 0; i < sigma_x.data.size(); ++i)
+      axis_sigma->data()[2 * i] = sigma_x.data[i], axis_sigma->data()[2 * i + 1] = sigma_y.data[i];
   // Horizontal, then vertical: the separable form of the 31x31 joint bilateral [TRMV21 Sec. 5]
-  // (trmv_spatial_pass), spatial_sigma everywhere.
-  const TrmvSpatialPush horizontal =
-      trmv_spatial_push(w, h, kTrmvHorizontal, params.spatial_radius, false, params.spatial_sigma, edges);
-  const TrmvSpatialPush vertical =
-      trmv_spatial_push(w, h, kTrmvVertical, params.spatial_radius, false, params.spatial_sigma, edges);
+  // (trmv_spatial_pass), `sigma` everywhere or each pixel's std per axis.
+  const uint32_t mode = per_axis ? 2u : 0u;
+  const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, radius, mode, sigma, edges);
+  const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, radius, mode, sigma, edges);
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 2);
-  shaders.trmv_spatial(batch, {input.get()}, *g.surface, *g.depth_grad, {rows.get()}, horizontal);
-  shaders.trmv_spatial(batch, {rows.get()}, *g.surface, *g.depth_grad, {out.get()}, vertical);
+  shaders.trmv_spatial(batch, {input.get()}, *g.surface, *g.depth_grad, {rows.get()}, horizontal, "trmv_spatial",
+                       axis_sigma.get());
+  shaders.trmv_spatial(batch, {rows.get()}, *g.surface, *g.depth_grad, {out.get()}, vertical, "trmv_spatial",
+                       axis_sigma.get());
   batch.run();
   batch.total_time(ms);
   return unpack_rgb(*out, w, h);
@@ -92,8 +101,8 @@ TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporal
 
   const TrmvCleanupPush push = trmv_cleanup_push(uint32_t(w), uint32_t(h), has_alpha_v, params);
   // Eq. 7-8 at every pixel, then the 9x9 separable joint bilateral with each pixel's std (trmv_cleanup_pass).
-  const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, radius, true, 0.0f, edges);
-  const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, radius, true, 0.0f, edges);
+  const TrmvSpatialPush horizontal = trmv_spatial_push(w, h, kTrmvHorizontal, radius, 1u, 0.0f, edges);
+  const TrmvSpatialPush vertical = trmv_spatial_push(w, h, kTrmvVertical, radius, 1u, 0.0f, edges);
   const SvgfShaders shaders(context);
   ComputeBatch batch(context, 3);
   shaders.trmv_cleanup(batch, *color, *fetched_alpha_v, *clamped, *color_sigma, *weights, push);

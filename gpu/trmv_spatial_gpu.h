@@ -3,8 +3,8 @@
 // filters/trmv/cleanup.comp (w_A, w_C and the std), run on the same planes as trmv_spatial_pass() and
 // trmv_cleanup_pass().
 //
-//   in:  the RGB plane to filter (visibility travels as (V, V, V)), the current G-buffer planes, TrmvParams
-//        (spatial_radius, spatial_sigma; alpha, cleanup_size, cleanup_eps, cleanup_sigma_max) and SVGF's
+//   in:  the RGB plane to filter (visibility travels as (V, V, V)), the current G-buffer planes, the radius and std
+//        (or a std per pixel and axis), TrmvParams (alpha, cleanup_size, cleanup_eps, cleanup_sigma_max) and SVGF's
 //        edge-stopping parameters; the clean-up also the temporal pass's output (cbar_i, the fetched and the
 //        clamped history) and alpha^V (empty: alpha everywhere). Sizes as the golden passes demand (throws
 //        rtdr::Error), and radii >= 0.
@@ -23,9 +23,11 @@
 
 namespace rtdr {
 
-// Write the dispatches' device time in milliseconds to *ms (see ComputePipeline::dispatch).
-RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s,
-                             const TrmvParams& params, const SvgfParams& edges, double* ms = nullptr);
+// Write the dispatches' device time in milliseconds to *ms (see ComputePipeline::dispatch). With sigma_x and
+// sigma_y given (not empty), each pixel's std per axis (the penumbra filter), else `sigma` everywhere.
+RgbPlane trmv_spatial_vulkan(VulkanContext& context, const RgbPlane& c, const SurfacePlanes& s, int radius,
+                             float sigma, const SvgfParams& edges, double* ms = nullptr,
+                             const FloatPlane& sigma_x = {}, const FloatPlane& sigma_y = {});
 
 TrmvCleanupOutput trmv_cleanup_vulkan(VulkanContext& context, const TrmvTemporalOutput& temporal,
                                       const FloatPlane& alpha_v, const SurfacePlanes& s, const TrmvParams& params,

@@ -1,21 +1,23 @@
 // TRMV, the whole filter, on a Vulkan device: the Method behind `rtdr filter --backend vulkan --method trmv`. The
-// same passes as TrmvFilter (filters/trmv/trmv.h), each a dispatch of the ports in filters/trmv/*.comp, with every
-// plane and history on the device; the three components' 1-D bilateral passes run side by side, one dispatch for
-// all three (filters/trmv/spatial_shared.h), since they share the G-buffer:
-//   visibility V:  the spatial filter (two 1-D dispatches) -> the falloff (alpha^V, with the shadow motion)
+// same passes as TrmvFilter (filters/trmv/trmv.h), the ported ones dispatches of filters/trmv/*.comp, with every
+// plane and history on the device:
+//   visibility V:  the spatial filter (two 1-D dispatches) -> the falloff (alpha^V, with the splatted shadow motion)
 //                  [TRMV21 Eq. 4] -> the temporal blend and clamp [TRMV21 Eq. 2, Sec. 5] -> the clean-up
 //                  [TRMV21 Eq. 7-8] (one dispatch and two 1-D ones)
-//   diffuse:       the spatial filter -> the temporal blend along the dual motion, whose disoccluded pixels take the
-//                  history re-shaded from the cones -> the clean-up
-//   glossy:        the spatial filter -> the temporal blend along the glossy motion -> the clean-up
-// What stays on the host, as the golden code:
+//   diffuse:       (the a-trous, on the host) -> the temporal blend along the dual motion, whose disoccluded pixels
+//                  take the history re-shaded from the cones -> the clean-up
+//   glossy:        (the lobe filter, on the host) -> the temporal blend along the glossy motion -> the clean-up
+// What stays on the host, as the golden code, its result uploaded (each timed as its pass, host wall time):
+//   - the penumbra's width and the splat of the shadow motion (filters/trmv/penumbra.h, splat.h; "trmv_splat"). The
+//     splat has a port (gpu/trmv_splat_gpu.h, tested on its own) that this batch does not use yet;
+//   - the diffuse light's a-trous (filters/trmv/atrous.h; "trmv_atrous") and the glossy light's lobe filter
+//     (filters/trmv/reflection.h; "trmv_reflection"): no ports yet;
 //   - the cone re-shading [TRMV21 Sec. 4.3, Eq. 9-11] (filters/trmv/reshade.h): it integrates each pixel's path
-//     sample, a ray-tracing step, and its result is uploaded as the temporal pass's re-shaded history; timed as
-//     "trmv_reshade" (host wall time);
+//     sample and filters each cone; its result is the temporal pass's re-shaded history ("trmv_reshade");
 //   - the remodulation (trmv_remodulate: direct.shading x V + diffuse + glossy, times the albedo, plus emission) and
-//     the tone mapping, on the three cleaned components read back; timed as "modulate" and "tonemap" (host wall
-//     time). They are SVGF's passes, a few ms at 1080p; TRMV has no TAA.
-// The motion vectors are the frame's layers (motion.shadow_splat, motion.dual, motion.glossy): the render side made
+//     the tone mapping, on the three cleaned components read back ("modulate", "tonemap"). They are SVGF's passes,
+//     a few ms at 1080p; TRMV has no TAA.
+// The motion vectors are the frame's layers (motion.shadow, motion.dual, motion.glossy): the render side made
 // them; their own ports are gpu/motion_*_gpu.h.
 //
 // pass_times(): each port's device time (timestamps) summed over its dispatches and components, the host passes
@@ -26,8 +28,12 @@
 // TrmvFilter (--backend cpu). Buffers are made for the first frame's size; a later frame of another size throws.
 #pragma once
 
+#include "filters/surface_planes.h"
 #include "filters/trmv/cones.h"
+#include "filters/trmv/footprint.h"
+#include "filters/trmv/penumbra.h"
 #include "filters/trmv/reshade.h"
+#include "filters/trmv/splat.h"
 #include "gpu/svgf_shaders.h"
 #include "gpu/vulkan_method.h"
 
@@ -51,9 +57,11 @@ class TrmvVulkan : public VulkanMethod {
 
  private:
   struct Buffers;  // every device plane, made for one frame size
-  // Records the three components' spatial filter, temporal blends and clean-ups into batch_; `alpha_v` is the
-  // visibility's alpha plane, or null.
-  void record_components(const GpuBuffer* alpha_v);
+  // Records the visibility's spatial filter and the three components' temporal blends and clean-ups into batch_;
+  // `alpha_v` is the visibility's alpha plane, or null; `per_axis_sigma`: the penumbra filter's std per pixel.
+  void record_components(const GpuBuffer* alpha_v, bool per_axis_sigma);
+  // The passes that run on the host (above), their results packed into `b`; returns the re-shaded history.
+  RgbPlane host_passes(const Frame& in, Buffers& b, const SurfacePlanes& surface, const TrmvWindows& win);
   void dump(const Frame& in, Frame& out, const RgbPlane& tonemapped) const;
 
   VulkanContext& context_;
@@ -63,6 +71,12 @@ class TrmvVulkan : public VulkanMethod {
   ConeLayout cone_layout_;       // the re-shading's cones (cones.h)
   TrmvConeHistory cones_;        // this frame's cones: next frame's history
   TrmvConeHistory seen_cones_;   // those the re-shading read this frame
+  // This frame's host passes that the dump shows: the splat, the penumbra and its std per axis (shadow_filter = 1).
+  struct HostPasses {
+    TrmvSplatOutput splat;
+    TrmvPenumbraOutput penumbra;
+    FloatPlane sigma_x, sigma_y;
+  } host_;
   int frames_ = 0;               // frames since the last reset: 0 means no history
 };
 

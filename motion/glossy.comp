@@ -8,7 +8,8 @@
 // leaves open are the golden pass's (motion/glossy.h).
 //   in:  bindings 0-2 (s_i, roughness), n(s_i), h_i; 3-5 the reflector's and the hit's instance ids, rng.seed;
 //        6 every instance's T^{-1}; 7 the two Views;
-//   out: 8 (m^R, mu, a1, a2, valid). Layout: motion/glossy_shared.h.
+//   out: 8 (m^R, mu, a1, a2, b1, b2, valid, has_footprint): b1, b2 the same lobe's footprint seen by the current
+//        camera. Layout: motion/glossy_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order, and glm's products are written out in glm's order (dot:
 // (x + y) + z; normalize: v * (1 / sqrt(dot(v, v))); mat3 * vec3: (c0 x + c1 y) + c2 z; mat4 * vec4:
@@ -125,9 +126,9 @@ bool mirror_in_plane(vec3 eye, vec3 h, vec3 s, vec3 n_s, out MirrorImage m) {
 
 // The lobe's footprint in the image [TRMV21 Sec. 4.2, "tracking the endpoints of major and minor axes"]: the
 // cone of half-angle sigma_theta from v around v -> s^C cuts the plane in an ellipse around s^C; each semi-axis's
-// endpoints are projected and halved. a1 (in the plane of incidence) and a2 (perpendicular), pixels. False when
-// the lobe is too wide to meet the plane in an ellipse, or an endpoint is behind the previous camera.
-bool footprint_axes(MirrorImage m, float sigma_theta, out vec2 a1, out vec2 a2) {
+// endpoints are projected and halved with views[view]. a1 (in the plane of incidence) and a2 (perpendicular),
+// pixels. False when the lobe is too wide to meet the plane in an ellipse, or an endpoint is behind that camera.
+bool footprint_axes(MirrorImage m, float sigma_theta, int view, out vec2 a1, out vec2 a2) {
   // sigma_theta < pi/2 - i, the angle between the cone's axis and the plane (motion/glossy.h). std::clamp.
   const float c = m.cos_incidence < 0.0 ? 0.0 : (1.0 < m.cos_incidence ? 1.0 : m.cos_incidence);
   const float axis_to_plane = asin(c);  // pi/2 - i
@@ -145,9 +146,9 @@ bool footprint_axes(MirrorImage m, float sigma_theta, out vec2 a1, out vec2 a2) 
   for (int k = 0; k < 2; ++k) {
     const vec3 semi_axis = k == 0 ? semi_along : semi_across;
     precise vec3 end_plus = m.specular_point + semi_axis, end_minus = m.specular_point - semi_axis;
-    const vec3 plus = project(views[kPreviousView], end_plus);  // (x, y, depth)
-    const vec3 minus = project(views[kPreviousView], end_minus);
-    const float znear = views[kPreviousView].znear;
+    const vec3 plus = project(views[view], end_plus);  // (x, y, depth)
+    const vec3 minus = project(views[view], end_minus);
+    const float znear = views[view].znear;
     if (plus.z < znear || minus.z < znear) return false;  // the footprint reaches behind the camera
     precise vec2 axis = 0.5 * (plus.xy - minus.xy);
     axes[k] = axis;
@@ -183,7 +184,8 @@ vec2 glossy_normal_pair(uint seed) {
 
 // The golden per-pixel function, glossy_motion_pixel, on GlossyRayLayers::at(i).
 GlossyMotionRecord glossy_motion_pixel(int i) {
-  GlossyMotionRecord result = GlossyMotionRecord(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0u, uint[3](0u, 0u, 0u));
+  GlossyMotionRecord result = GlossyMotionRecord(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0u,
+                                                 0u, uint[2](0u, 0u));
   const uint hit_instance = hit_id(i).x, reflector_instance = reflector_id(i).x;
   if (!known_instance(reflector_instance) || !known_instance(hit_instance))
     return result;  // no surface, or its BSDF ray escaped: nothing is reflected
@@ -194,6 +196,10 @@ GlossyMotionRecord glossy_motion_pixel(int i) {
   if (!mirror_in_plane(frame.eye.xyz, h, s, n, now)) return result;
   const vec3 x_cur = project(views[kCurrentView], now.image);  // (x, y, depth)
   if (x_cur.z < views[kCurrentView].znear) return result;
+  const float sigma_theta = glossy_lobe_angle(ggx_alpha(s_roughness.w));
+  // The lobe's footprint in this frame's image: steps (2)-(4) with v_i and P_i (the glossy filter's kernel).
+  vec2 b1, b2;
+  if (footprint_axes(now, sigma_theta, kCurrentView, b1, b2)) result.b1 = b1, result.b2 = b2, result.has_footprint = 1u;
 
   // (1) T^{-1} h_i and T^{-1} plane(s_i), each with its own instance's motion [TRMV21 Eq. 5].
   const vec3 h_prev = transform_point(instances[hit_instance].to_previous, h);
@@ -208,7 +214,7 @@ GlossyMotionRecord glossy_motion_pixel(int i) {
   if (mu.z < views[kPreviousView].znear) return result;  // behind the previous camera: no previous screen position
   // (4) Sigma: the GGX lobe of s_i's roughness, sigma_theta = 2 atan(1.458 alpha), traced from v to the plane.
   vec2 a1, a2;
-  if (!footprint_axes(before, glossy_lobe_angle(ggx_alpha(s_roughness.w)), a1, a2)) return result;
+  if (!footprint_axes(before, sigma_theta, kPreviousView, a1, a2)) return result;
 
   // (5) x^R_{i-1} = sample(mu, Sigma) = mu + a1 n1 + a2 n2, and m^R = x^R_{i-1} - x_i [TRMV21 Eq. 5].
   precise vec2 mu_i = mu.xy - x_cur.xy;

@@ -104,6 +104,14 @@ GlossyMotion glossy_motion_pixel(const GlossyRay& r, const std::vector<InstanceM
   if (!mirror_in_plane(view.eye, r.hit, r.reflector, r.reflector_normal, now)) return out;
   const glm::vec3 x_cur = view.project(now.image);  // (x, y, depth)
   if (x_cur.z < view.znear) return out;
+  const float sigma_theta = glossy_lobe_angle(ggx_alpha(r.roughness));
+  // The lobe's footprint in this frame's image: steps (2)-(4) with v_i and P_i (the glossy filter's kernel).
+  glm::mat2 axes_now;
+  if (footprint_axes(now, sigma_theta, view, axes_now)) {
+    out.footprint_axes = axes_now;
+    out.footprint = axes_now * glm::transpose(axes_now);  // b1 b1^T + b2 b2^T
+    out.has_footprint = true;
+  }
 
   // (1) T^{-1} h_i and T^{-1} plane(s_i), each with its own instance's motion [TRMV21 Eq. 5].
   const InstanceMotion& T_reflector = to_previous[r.reflector_instance];
@@ -119,7 +127,7 @@ GlossyMotion glossy_motion_pixel(const GlossyRay& r, const std::vector<InstanceM
   if (mu.z < prev_view.znear) return out;  // behind the previous camera: no previous screen position
   // (4) Sigma: the GGX lobe of s_i's roughness, sigma_theta = 2 atan(1.458 alpha), traced from v to the plane.
   glm::mat2 axes;
-  if (!footprint_axes(before, glossy_lobe_angle(ggx_alpha(r.roughness)), prev_view, axes)) return out;
+  if (!footprint_axes(before, sigma_theta, prev_view, axes)) return out;
 
   // (5) x^R_{i-1} = sample(mu, Sigma) = mu + a1 n1 + a2 n2, and m^R = x^R_{i-1} - x_i [TRMV21 Eq. 5].
   out.mu = glm::vec2(mu) - glm::vec2(x_cur);
@@ -164,7 +172,22 @@ std::vector<GlossyMotion> glossy_motion(const FrameGeometry& g, const Frame& fra
 }
 
 void write_glossy_motion_layers(const FrameGeometry& g, Frame& frame) {
-  write_motion_and_validity(frame, "motion.glossy", glossy_motion(g, frame));
+  const std::vector<GlossyMotion> m = glossy_motion(g, frame);
+  write_motion_and_validity(frame, "motion.glossy", m);
+  // mu alone, the lobe's centre: the glossy vector without Eq. 5's draw (TrmvParams::glossy_draw).
+  std::vector<glm::vec2> mean(m.size());
+  for (size_t i = 0; i < m.size(); ++i) mean[i] = m[i].valid ? m[i].mu : glm::vec2(0.0f);
+  frame.set_vec2("motion.glossy_mean", mean);
+  // Sigma_i, symmetric: three entries, pixels^2.
+  FloatPlane& xx = frame.add_float("glossy.footprint.XX");
+  FloatPlane& xy = frame.add_float("glossy.footprint.XY");
+  FloatPlane& yy = frame.add_float("glossy.footprint.YY");
+  UIntPlane& has = frame.add_uint("glossy.footprint.valid");
+  for (size_t i = 0; i < m.size(); ++i) {
+    if (!m[i].has_footprint) continue;  // 0, and valid 0
+    xx.data[i] = m[i].footprint[0][0], xy.data[i] = m[i].footprint[1][0], yy.data[i] = m[i].footprint[1][1];
+    has.data[i] = 1u;
+  }
 }
 
 }  // namespace rtdr

@@ -113,6 +113,12 @@ struct GlossyMotion {
   glm::mat2 Sigma{0.0f};    // a1 a1^T + a2 a2^T, pixels^2
   glm::vec2 motion{0.0f};   // m^R = x^R_{i-1} - x_i = mu + a1 n1 + a2 n2, pixels; (0, 0) when not valid
   bool valid = false;
+  // The same lobe's footprint seen by the CURRENT camera: the columns b1, b2 and Sigma_i = b1 b1^T + b2 b2^T
+  // (pixels^2), from the current virtual image v_i (steps 2-4 with P_i). Independent of the previous frame: what
+  // the glossy spatial filter reads (filters/trmv/reflection.h, [LLK*19]'s lobe footprint). 0 without one.
+  glm::mat2 footprint_axes{0.0f};
+  glm::mat2 footprint{0.0f};
+  bool has_footprint = false;
 };
 
 // sigma_theta = 2 atan(1.458 alpha): the reflected direction's angular standard deviation, radians (above).
@@ -141,8 +147,9 @@ class GlossyRayLayers {
 // Every pixel's glossy motion, row-major; bit-identical for any thread count.
 std::vector<GlossyMotion> glossy_motion(const FrameGeometry& geometry, const Frame& frame);
 
-// Adds motion.glossy.X, motion.glossy.Y and motion.glossy.valid (uint 0/1) to a frame that holds the path.*
-// layers (trace_layers).
+// Adds motion.glossy.X, motion.glossy.Y and motion.glossy.valid (uint 0/1), the lobe's centre motion.glossy_mean.X/Y
+// (mu, where motion.glossy is valid, else 0), and the current footprint glossy.footprint.XX/XY/YY (Sigma_i's
+// entries, pixels^2) with glossy.footprint.valid, to a frame that holds the path.* layers (trace_layers).
 void write_glossy_motion_layers(const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

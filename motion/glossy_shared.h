@@ -15,7 +15,7 @@
 //   5 seed            R32UI, rng.seed
 //   6 instances       a std430 array of ShadowInstanceMotion, one per instance (InstanceMotion)
 //   7 views           a std430 array of two ViewRecord: [0] this frame's View, [1] the previous frame's
-//   8 out             a std430 array of GlossyMotionRecord: written
+//   8 out             a std430 array of GlossyMotionRecord: written (the previous and the current footprint)
 #ifndef RTDR_MOTION_GLOSSY_SHARED_H
 #define RTDR_MOTION_GLOSSY_SHARED_H
 
@@ -63,20 +63,24 @@ struct GlossyMotionPush {
   float min_ggx_alpha;
 };
 
-// One pixel's GlossyMotion: m^R, mu, the footprint's columns a1 and a2 (pixels) and valid (0 or 1); Sigma is
-// a1 a1^T + a2 a2^T, made on the host as glossy_motion_pixel makes it. 48 bytes, the same in C++ and in std430.
+// One pixel's GlossyMotion: m^R, mu, the footprint's columns a1 and a2 (pixels) and valid (0 or 1); the current
+// footprint's columns b1 and b2 and has_footprint (0 or 1). Sigma = a1 a1^T + a2 a2^T and Sigma_i = b1 b1^T +
+// b2 b2^T are made on the host as glossy_motion_pixel makes them. 64 bytes, the same in C++ and in std430.
 struct GlossyMotionRecord {
   RTDR_SHARED_VEC2 motion;
   RTDR_SHARED_VEC2 mu;
   RTDR_SHARED_VEC2 a1;
   RTDR_SHARED_VEC2 a2;
+  RTDR_SHARED_VEC2 b1;
+  RTDR_SHARED_VEC2 b2;
   RTDR_SHARED_UINT valid;
-  RTDR_SHARED_UINT unused[3];
+  RTDR_SHARED_UINT has_footprint;
+  RTDR_SHARED_UINT unused[2];
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(GlossyMotionPush) == 48, "two vec4 and four 4-byte fields, the std430 layout of the block");
-static_assert(sizeof(GlossyMotionRecord) == 48, "four vec2 and four 4-byte fields, the std430 layout of the struct");
+static_assert(sizeof(GlossyMotionRecord) == 64, "six vec2 and four 4-byte fields, the std430 layout of the struct");
 }  // namespace rtdr
 #endif
 #undef RTDR_GLOSSY_VEC4

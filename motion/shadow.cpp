@@ -4,7 +4,6 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "motion/shadow_splat.h"
 
 #include <cmath>
 #include <string>
@@ -105,12 +104,6 @@ std::vector<ShadowMotion> shadow_motion(const FrameGeometry& g, const Frame& fra
 void write_shadow_motion_layers(const FrameGeometry& g, Frame& frame) {
   const std::vector<ShadowMotion> m = shadow_motion(g, frame);
   write_motion_and_validity(frame, "motion.shadow", m);
-  const std::vector<SplatMotion> splat =
-      splat_shadow_motion(m, frame.get_vec2("motion"), g.vis.depth, g.vis.width, g.vis.height, kShadowSplatSize);
-  std::vector<glm::vec2> splat_motion(splat.size());
-  UIntPlane& landed = frame.add_uint("motion.shadow_splat.valid");
-  for (size_t i = 0; i < splat.size(); ++i) splat_motion[i] = splat[i].motion, landed.data[i] = splat[i].landed ? 1u : 0u;
-  frame.set_vec2("motion.shadow_splat", splat_motion);
 }
 
 }  // namespace rtdr

@@ -34,7 +34,7 @@
 // shadow falls on the face, and the face is what Eq. 3 intersects.
 //
 // One light sample per pixel gives one m^V, from that sample's light (TRMV21 Sec. 6: several moving lights are
-// a stated failure). Only pixels whose shadow ray was blocked have m^V; motion/shadow_splat.h spreads it.
+// a stated failure). Only pixels whose shadow ray was blocked have m^V; filters/trmv/splat.h spreads it.
 #pragma once
 
 #include "core/error.h"
@@ -126,7 +126,8 @@ void write_motion_and_validity(Frame& frame, const std::string& layer, const std
 std::vector<ShadowMotion> shadow_motion(const FrameGeometry& geometry, const Frame& frame);
 
 // Adds motion.shadow.X, motion.shadow.Y and motion.shadow.valid (uint 0/1) to a frame that holds the path.*
-// layers (trace_layers), then the splatted field motion.shadow_splat.X/Y and .valid (motion/shadow_splat.h).
+// layers (trace_layers). The splat that spreads it to the pixels around each shadow (filters/trmv/splat.h) is the
+// filter's: its window is the shadow filter's (filters/trmv/footprint.h).
 void write_shadow_motion_layers(const FrameGeometry& geometry, Frame& frame);
 
 }  // namespace rtdr

@@ -12,13 +12,14 @@ motion vector follows the pixel's *surface* [TRMV21 Eq. 1]. That is the wrong pl
 move with the surface: a shadow moves with its light and its blocker, a reflection with the reflected object,
 and a pixel that a moving object has just uncovered was hidden last frame, so its surface has no history at all.
 TRMV (Zeng et al. 2021, filters/trmv/README.md) computes one vector per effect. `rtdr render` writes all four
-into every frame (docs/buffers.md, motion/README.md):
+into every frame (docs/buffers.md, motion/README.md), and the filter spreads the shadow vector to the pixels
+around each shadow (the splat, filters/trmv/splat.h):
 
 | layer | vector | follows |
 |---|---|---|
 | `motion.X/Y` | $m = x_{i-1} - x_i$ [TRMV21 Eq. 1] | the surface point |
 | `motion.shadow.X/Y/valid` | $m^V$ [TRMV21 Eq. 3] | the shadow: light sample, blocker, receiver plane |
-| `motion.shadow_splat.X/Y/valid` | $m^V$ spread over 9x9 pixels [TRMV21 Sec. 4.1] | the shadow, for the lit pixels beside it too |
+| `filter.trmv.visibility.splat_x/y/landed` | $m^V$ spread over the shadow filter's window [TRMV21 Sec. 4.1] (`rtdr filter --dump-passes`) | the shadow, for the lit pixels beside it too |
 | `motion.glossy.X/Y/valid` | $m^R$ [TRMV21 Eq. 5] | the reflected point's mirror image, plus one draw of the lobe |
 | `motion.dual.X/Y/valid` | $x^O_{i-1} - x_i$ [TRMV21 Eq. 6] | at disoccluded pixels: a step back by the occluder's motion |
 
@@ -33,10 +34,12 @@ rebuilt by hand from the layers, and the last section shows where each vector fa
 
 The data comes from `RTDR_TRMV_FENCE`, `RTDR_TRMV_GLOSSY`, `RTDR_TRMV_GLOSSY_RESEED` and `RTDR_TRMV_OCCLUSION`:
 folders that hold a frame and the one before it (the reseeded glossy folder, the last frame alone, rendered
-with another seed). To make them yourself:
+with another seed); and `RTDR_TRMV_FENCE_DUMP`, the fence's frames filtered by trmv with their dumps. To make
+them yourself:
 
 ```sh
-build/app/rtdr render --scene fence --frames 7-8 --size 320x180 --out out/trmv-walkthrough/fence
+build/app/rtdr render --scene fence --frames 7-8 --size 320x180 --shading-samples 16 --out out/trmv-walkthrough/fence
+build/app/rtdr filter --method trmv --in out/trmv-walkthrough/fence --out out/trmv-walkthrough/fence-trmv --dump-passes
 build/app/rtdr render --scene glossy --frames 19-20 --size 320x180 --out out/trmv-walkthrough/glossy
 build/app/rtdr render --scene glossy --frames 20 --size 320x180 --seed 1 --out out/trmv-walkthrough/glossy-reseed
 build/app/rtdr render --scene occlusion --frames 39-40 --size 320x180 --out out/trmv-walkthrough/occlusion
@@ -55,6 +58,7 @@ build/app/rtdr view --in out/trmv-walkthrough/fence-seq --method trmv
     new_code_cell(COMMON + """
 
 FENCE = os.environ.get("RTDR_TRMV_FENCE", "out/trmv-walkthrough/fence")
+FENCE_DUMP = os.environ.get("RTDR_TRMV_FENCE_DUMP", "out/trmv-walkthrough/fence-trmv")
 GLOSSY = os.environ.get("RTDR_TRMV_GLOSSY", "out/trmv-walkthrough/glossy")
 GLOSSY_RESEED = os.environ.get("RTDR_TRMV_GLOSSY_RESEED", "out/trmv-walkthrough/glossy-reseed")
 OCCLUSION = os.environ.get("RTDR_TRMV_OCCLUSION", "out/trmv-walkthrough/occlusion")
@@ -137,6 +141,7 @@ def arrows(ax, background, frame, name, mask, crop, step, title, cmap=None, colo
     ax.set_xticks([]); ax.set_yticks([])
 
 fence_prev, fence, fence_index = last_two(FENCE)
+fence_dump = read_exr(os.path.join(FENCE_DUMP, frame_files(FENCE_DUMP)[-1]))
 glossy_prev, glossy, glossy_index = last_two(GLOSSY)
 glossy_reseed = read_frame(os.path.join(GLOSSY_RESEED, frame_files(GLOSSY_RESEED)[-1]))
 occ_prev, occ, occ_index = last_two(OCCLUSION)
@@ -156,15 +161,17 @@ $$x^V_{i-1} = P_{i-1}\ \mathrm{intersect}\left[T^{-1} l_i \to T^{-1} b_i\ ;\ T^{
 the line from the pixel's light sample $l_i$ through its blocker $b_i$, both carried back to the previous frame
 with their own motion, meets the receiver's plane where the same shadow point was. It exists only where the
 pixel's shadow ray was blocked: `motion.shadow.valid`. The lit pixels beside a shadow need it as much (their
-history holds last frame's shadow), so `motion.shadow_splat` gives every pixel the mean of the valid $m^V$
-within 9x9 pixels on the same surface, and the surface motion where none landed [TRMV21 Sec. 4.1].
+history holds last frame's shadow), so the filter's splat gives every pixel the mean of the valid $m^V$ within
+the shadow filter's window on the same receiving surface, and the surface motion where none landed [TRMV21
+Sec. 4.1]. The window is the paper's 31x31 at 1080 rows, scaled to the frame's height (filters/trmv/footprint.h).
 
 Below: the frame, its 1-spp visibility, then the X components (red: the content came from the left,
 $m_x < 0$; grey: no vector) of the surface motion, of $m^V$ and of the splat, and the valid masks. The fence
 moves right in this frame, so its shadows came from the left."""),
     new_code_cell("""floor = fence["id.instance"] == 0  # the floor; the back wall is instance 1, the slats and rails the rest
 shadow_valid = fence["motion.shadow.valid"] == 1
-splat_valid = fence["motion.shadow_splat.valid"] == 1
+splat_valid = fence_dump["filter.trmv.visibility.splat_landed"] == 1
+fence["splat.X"], fence["splat.Y"] = fence_dump["filter.trmv.visibility.splat_x"], fence_dump["filter.trmv.visibility.splat_y"]
 surface = fence["id.instance"] != NONE
 vmax = max(1.0, np.abs(fence["motion.shadow.X"]).max())
 show([display(colour(fence)), fence["direct.visibility"]],
@@ -172,11 +179,11 @@ show([display(colour(fence)), fence["direct.visibility"]],
 fig, axes = plt.subplots(1, 3, figsize=(13, 2.8), constrained_layout=True)
 field(axes[0], fence, "motion", surface, vmax, "surface motion m.x [Eq. 1]")
 field(axes[1], fence, "motion.shadow", shadow_valid, vmax, "shadow vector m^V.x where valid [Eq. 3]")
-shown = field(axes[2], fence, "motion.shadow_splat", surface, vmax, "splat [Sec. 4.1] (surface motion where none landed)")
+shown = field(axes[2], fence, "splat", surface, vmax, "splat [Sec. 4.1] (surface motion where none landed)")
 fig.colorbar(shown, ax=axes, shrink=0.8, label="pixels")
 plt.show()
 show([shadow_valid, splat_valid], ["motion.shadow.valid: the shadow ray was blocked",
-                                   "motion.shadow_splat.valid: a valid m^V within 9x9 on the same surface"], cmap="gray")
+                                   "splat_landed: a valid m^V of the same surface within the window"], cmap="gray")
 
 m = np.hypot(*vec(fence, "motion"))
 mv = np.hypot(*vec(fence, "motion.shadow"))
@@ -221,20 +228,29 @@ slats or hit the next one. $m^V$ is the motion of *this* sample's shadow point.
 
 The shadow vector exists only where the pixel's shadow ray was blocked: `path.blocker.instance` is not
 4294967295 (motion/shadow.h lists the other conditions, which rarely bite). The splat is a gather: a pixel's
-`motion.shadow_splat` is the mean of the valid `motion.shadow` in its 9x9 window whose depth is within 10 % of
-the larger of the two, and its own surface motion where none is (motion/shadow_splat.h). The cell computes it
-for one lit floor pixel beside a shadow, term by term, then for the whole frame with numpy, and compares."""),
+splatted vector is the mean of the valid `motion.shadow` in its window (the shadow filter's: side 31 at 1080
+rows, S H / 1080 here, the nearest odd side, at least 3) whose pixel shows the same instance (`id.instance`)
+with a normal within 25.8 degrees (cosine 0.9), and its own surface motion where none is (filters/trmv/splat.h).
+The cell computes it for one lit floor pixel beside a shadow, term by term, then for the whole frame with numpy,
+and compares with the filter's dump."""),
     new_code_cell("""blocked = fence["path.blocker.instance"] != NONE
 print(f"blocked shadow rays: {blocked.sum()}; valid shadow vectors: {shadow_valid.sum()}; "
       f"blocked without a vector: {(blocked & ~shadow_valid).sum()}")
 assert not (shadow_valid & ~blocked).any(), "a shadow vector without a blocked shadow ray"
 
-depth = fence["depth.Z"]
-def splat_pixel(x, y, r=4):
-    \"\"\"motion.shadow_splat at (x, y), from the layers [TRMV21 Sec. 4.1]: (mean, how many landed).\"\"\"
+side = 2 * max(1, int(np.floor((31 * H / 1080 - 1) / 2 + 0.5))) + 1  # the splat's window (footprint.h)
+r = side // 2
+instance = fence["id.instance"]
+normal = np.stack([fence["normal.X"], fence["normal.Y"], fence["normal.Z"]], axis=-1).astype(np.float32)
+def same_surface(y, x, ys, xs):
+    \"\"\"Pixels (ys, xs) on pixel (y, x)'s receiving surface: the same instance, normals within cosine 0.9.\"\"\"
+    return (instance[ys, xs] == instance[y, x]) & ((normal[ys, xs] * normal[y, x]).sum(-1) >= np.float32(0.9))
+
+def splat_pixel(x, y):
+    \"\"\"The splat at (x, y), from the layers [TRMV21 Sec. 4.1]: (mean, how many landed).\"\"\"
     ys, xs = np.mgrid[max(0, y - r):min(H, y + r + 1), max(0, x - r):min(W, x + r + 1)]
-    land = shadow_valid[ys, xs] & (np.abs(depth[ys, xs] - depth[y, x]) <= 0.1 * np.maximum(depth[ys, xs], depth[y, x]))
-    if depth[y, x] <= 0 or not land.any():
+    land = shadow_valid[ys, xs] & same_surface(y, x, ys, xs)
+    if instance[y, x] == NONE or not land.any():
         return np.array([fence["motion.X"][y, x], fence["motion.Y"][y, x]]), 0
     return np.array([fence["motion.shadow.X"][ys, xs][land].mean(), fence["motion.shadow.Y"][ys, xs][land].mean()]), land.sum()
 
@@ -242,30 +258,33 @@ def splat_pixel(x, y, r=4):
 candidates = np.argwhere(splat_valid & floor & ~shadow_valid)
 y, x = candidates[len(candidates) // 2]
 by_hand, landed = splat_pixel(x, y)
-stored = np.array([fence["motion.shadow_splat.X"][y, x], fence["motion.shadow_splat.Y"][y, x]])
-print(f"pixel ({x}, {y}): visibility {fence['direct.visibility'][y, x]:.0f}, no shadow vector of its own; "
-      f"{landed} valid m^V in its 9x9 window on its surface")
-print(f"  their mean {by_hand.round(4)}; motion.shadow_splat {stored.round(4)}; surface motion "
+stored = np.array([fence["splat.X"][y, x], fence["splat.Y"][y, x]])
+print(f"window {side}x{side} at {H} rows; pixel ({x}, {y}): visibility {fence['direct.visibility'][y, x]:.0f}, "
+      f"no shadow vector of its own; {landed} valid m^V in its window on its surface")
+print(f"  their mean {by_hand.round(4)}; the filter's splat {stored.round(4)}; surface motion "
       f"({fence['motion.X'][y, x]:.4f}, {fence['motion.Y'][y, x]:.4f})")
 assert landed > 0 and np.allclose(by_hand, stored, atol=1e-4), (by_hand, stored)
 
-# Every pixel: the same gather, 81 shifted copies of the frame at once.
+# Every pixel: the same gather, side^2 shifted copies of the frame at once.
 sum_x, sum_y, count = np.zeros((H, W)), np.zeros((H, W)), np.zeros((H, W))
-pad = lambda a, v: np.pad(a, 4, constant_values=v)
-vx, vy, vd, vv = pad(fence["motion.shadow.X"], 0), pad(fence["motion.shadow.Y"], 0), pad(depth, 0), pad(shadow_valid, False)
-for dy in range(9):
-    for dx in range(9):
-        qd = vd[dy:dy + H, dx:dx + W]
-        land = vv[dy:dy + H, dx:dx + W] & (np.abs(qd - depth) <= 0.1 * np.maximum(qd, depth))
+pad = lambda a, v: np.pad(a, [(r, r), (r, r)] + [(0, 0)] * (a.ndim - 2), constant_values=v)
+vx, vy, vv = pad(fence["motion.shadow.X"], 0), pad(fence["motion.shadow.Y"], 0), pad(shadow_valid, False)
+vi, vn = pad(instance, NONE), pad(normal, 0)
+for dy in range(side):
+    for dx in range(side):
+        qn = vn[dy:dy + H, dx:dx + W]
+        land = vv[dy:dy + H, dx:dx + W] & (vi[dy:dy + H, dx:dx + W] == instance) & ((qn * normal).sum(-1) >= np.float32(0.9))
         sum_x += np.where(land, vx[dy:dy + H, dx:dx + W], 0); sum_y += np.where(land, vy[dy:dy + H, dx:dx + W], 0)
         count += land
-landed_any = (count > 0) & (depth > 0)
+landed_any = (count > 0) & (instance != NONE)
 splat_x = np.where(landed_any, sum_x / np.maximum(count, 1), fence["motion.X"])
 splat_y = np.where(landed_any, sum_y / np.maximum(count, 1), fence["motion.Y"])
-error = max(np.abs(splat_x - fence["motion.shadow_splat.X"]).max(), np.abs(splat_y - fence["motion.shadow_splat.Y"]).max())
-print(f"the whole frame: splat by hand against motion.shadow_splat, largest difference {error:.2g} px; "
-      f"validity the same at {(landed_any == splat_valid).mean():.2%} of the pixels")
-assert error < 1e-3 and (landed_any == splat_valid).all()"""),
+error = max(np.abs(splat_x - fence["splat.X"])[instance != NONE].max(), np.abs(splat_y - fence["splat.Y"])[instance != NONE].max())
+agree = (landed_any == splat_valid).mean()
+print(f"the whole frame: splat by hand against the filter's, largest difference {error:.2g} px; "
+      f"landed the same at {agree:.2%} of the pixels")
+# A normal's dot product within a rounding of the cosine may land on one side and not the other.
+assert error < 1e-3 and agree > 0.999, (error, agree)"""),
     new_markdown_cell(r"""## 3. The glossy vector on the glossy floor [TRMV21 Eq. 5]
 
 The floor of `glossy` is a metal of roughness 0.15, and the camera orbits. A reflection moves with the
@@ -449,10 +468,11 @@ computes the evidence.
   were both lights moving, neighbours would follow different shadows and the splat would average them. `glossy`
   has two lights (a ceiling panel and a strip by the back wall): the cell counts which one each shadow vector
   follows, and how many have a neighbour that follows the other.
-- "Only pixels whose shadow ray was blocked have m^V; motion/shadow_splat.h spreads it" (motion/shadow.h). In a
+- "Only pixels whose shadow ray was blocked have m^V; filters/trmv/splat.h spreads it" (motion/shadow.h). In a
   penumbra the 1-spp ray is blocked at random, and a lit pixel the shadow has just left has none: on the fence,
-  the splat gives it its neighbours' mean. The splat's own limits: 9x9 pixels, "a shadow edge moving up to 4
-  pixels a frame is covered" (motion/shadow_splat.h)."""),
+  the splat gives it its neighbours' mean. The splat's own limit: its window, the shadow filter's (31x31 at 1080
+  rows, scaled to the frame): a shadow edge that moves farther than half of it in a frame leaves lit pixels
+  that no vector reaches (filters/trmv/splat.h)."""),
     new_code_cell("""lights = glossy["path.light.instance"]
 g_shadow = glossy["motion.shadow.valid"] == 1
 print(f"glossy, frame {glossy_index}: {g_shadow.sum()} shadow vectors; by the light they follow: "
@@ -545,8 +565,9 @@ assert counts["glossy", "motion"][1] > 0"""),
    frames with `--spp 16` and look up the previous `direct.visibility` (now a fraction) at $x_i + m^V$ and at
    $x_i + m$. Which vector lands in the darker place? Why can't a 1-spp $m^V$ do better than the sample it
    was made from?
-2. The splat averages the valid $m^V$ of a 9x9 window. Near the camera the fence's shadows move the most: find
-   the largest $|m^V|$ on the floor. For what speed would a 9x9 window stop covering a shadow's edge?
+2. The splat averages the valid $m^V$ of the shadow filter's window (`side` in section 2). Near the camera the
+   fence's shadows move the most: find the largest $|m^V|$ on the floor. For what speed would that window stop
+   covering a shadow's edge, and at which frame height would the fence's shadows outrun it?
 3. Section 3 estimated $\sqrt{\mathrm{trace}\,\Sigma}$ over the whole floor. Where on the floor is the spread
    widest, and why (think of the distance $d = |v - s^C|$ and the incidence angle in motion/glossy.h)?
    Render the glossy scene at twice the size: how does the spread in pixels change?

@@ -62,5 +62,8 @@ TEST_CASE("registry: rtdr filter prints the tables a method reads, and no other"
   CHECK(has(asvgf, "gradient_levels"));
   const std::string trmv = describe_method_params("trmv", method_defaults("trmv"));
   CHECK(has(trmv, "falloff_sigma"));
-  CHECK_FALSE(has(trmv, "atrous_levels"));
+  // TRMV's own a-trous (4 levels of a 3x3, filters/trmv/atrous.h), not SVGF's 5 levels: trmv prints no SVGF row.
+  CHECK(trmv.find("\natrous_levels = 4 ") != std::string::npos);
+  CHECK_FALSE(has(trmv, "history_level"));
+  CHECK_FALSE(has(trmv, "variance_min_history"));
 }

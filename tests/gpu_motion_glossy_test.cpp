@@ -33,6 +33,8 @@
 //   m^R    B_m = B_mu + sum_k (B_a |n_k| + |a_k| Delta n_k) + 3 e (|mu| + sum_k |a_k n_k|), Delta n_k =
 //          Delta rho + rho (2^-11 + e + 1.75e-7), Delta rho = min(Delta q / (2 rho), sqrt(Delta q)) + 5 e rho,
 //          q = rho^2 = -2 log(1 - u): Delta q = 2^-20 + 2 e q for u <= 1/2, else 8 e q
+//   b_k    the current footprint's columns: B_a with the current mirror image and View (the same steps);
+//          its flag (has_footprint) is exact away from the same margins
 // each times 2 for the second-order terms and the roundings of the same operations on inputs that already differ,
 // which the list does not itemise. The bound is loose where Vulkan is: sin and cos to 2^-11 absolute make tan of a
 // narrow lobe (sigma_theta = 2.9 mrad at roughness 0) uncertain by a sixth. A simulated device with every one of
@@ -137,15 +139,58 @@ bool near_znear(double depth, float znear) {
   return std::abs(depth - double(znear)) <= kMargin * std::max(std::abs(depth), double(znear));
 }
 
-// Per pixel: whether a decision is within its margin, and the banner's bounds on mu, a1, a2 and m^R (per axis).
+// Per pixel: whether a decision is within its margin, and the banner's bounds on mu, a1, a2 and m^R (per axis), and
+// on b1, b2, the current footprint's columns.
 struct PixelBound {
   bool near = false;
-  glm::dvec2 mu{0.0}, a1{0.0}, a2{0.0}, motion{0.0};
+  glm::dvec2 mu{0.0}, a1{0.0}, a2{0.0}, motion{0.0}, b1{0.0}, b2{0.0};
 };
 
 // The golden transform_point (float), widened.
 glm::dvec3 transform_point(const glm::mat4& m, const glm::vec3& p) {
   return glm::dvec3(glm::vec3(m * glm::vec4(p, 1.0f)));
+}
+
+// The footprint of a mirror image seen by `view` (the golden footprint_axes): false when it has none; `near` set
+// where one of its decisions lies within its margin; da the banner's B_a per column (before the doubling).
+bool footprint_bound(const MirrorTerms& m, double sigma, const View& view, const glm::mat2& golden_axes, bool& near,
+                     glm::dvec2 (&da)[2]) {
+  // The horizon test and the normal-incidence test.
+  const double c = std::clamp(m.cos_i, 0.0, 1.0), dc = 40.0 * kE * c + kE;
+  const double one_minus = 1.0 - std::min(c + dc, 1.0) * std::min(c + dc, 1.0);
+  const double dasin = std::min(one_minus > 0.0 ? dc / std::sqrt(one_minus) : HUGE_VAL,
+                                glm::pi<double>() / std::sqrt(2.0) * std::sqrt(dc));
+  near = near || std::abs(sigma - std::asin(c)) <= 4097.0 * kE * (sigma + glm::half_pi<double>()) + dasin;
+  if (!(sigma < std::asin(c))) return false;
+  glm::dvec3 t1 = m.incidence - glm::dot(m.n, m.incidence) * m.n;
+  near = near || std::abs(glm::length(t1) - double(kGlossyNormalIncidence)) <= 64.0 * kE;
+  if (glm::length(t1) < double(kGlossyNormalIncidence)) {
+    glm::vec3 t, unused;
+    orthonormal_basis(glm::vec3(m.n), t, unused);
+    t1 = glm::dvec3(t);
+  }
+  t1 = glm::normalize(t1);
+  const glm::dvec3 t2 = glm::cross(m.n, t1);
+  // r and its relative error (banner).
+  const double tan_sigma = std::tan(sigma), sec2 = 1.0 + tan_sigma * tan_sigma;
+  const double dtan = (kSinCos * (1.0 + tan_sigma) + 4097.0 * kE * sigma * sec2) / (std::cos(sigma) - kSinCos) +
+                      3.0 * kE * tan_sigma;
+  const double dd_rel = 5.0 * kE + m.dt_rel * m.t / (1.0 - m.t) + kE;
+  const double r_across = m.d * tan_sigma, r_along = r_across / m.cos_i;
+  const double dr_across = dd_rel + dtan / tan_sigma + 2.0 * kE, dr_along = dr_across + m.dcos_rel + 3.0 * kE;
+  const double dsc = m.dt_rel * m.t * m.len + m.t * m.dv + 2.0 * kE * glm::length(m.sc);
+  const glm::dvec3 semi[2] = {r_along * t1, r_across * t2};
+  const double dsemi[2] = {r_along * (dr_along + 20.0 * kE), r_across * (dr_across + 20.0 * kE)};
+  bool behind = false;
+  for (int k = 0; k < 2; ++k) {
+    const double z_plus = depth_of(view, m.sc + semi[k]), z_minus = depth_of(view, m.sc - semi[k]);
+    near = near || near_znear(z_plus, view.znear) || near_znear(z_minus, view.znear);
+    behind = behind || z_plus < double(view.znear) || z_minus < double(view.znear);
+    da[k] = 0.5 * (screen_bound(view, m.sc + semi[k], dsc + dsemi[k]) +
+                   screen_bound(view, m.sc - semi[k], dsc + dsemi[k])) +
+            kE * glm::abs(glm::dvec2(golden_axes[k]));
+  }
+  return !behind;
 }
 
 PixelBound bound(const GlossyRay& r, const std::vector<InstanceMotion>& to_previous, const View& view,
@@ -154,6 +199,12 @@ PixelBound bound(const GlossyRay& r, const std::vector<InstanceMotion>& to_previ
   if (r.reflector_instance == kInvalidId || r.hit_instance == kInvalidId) return b;
   const MirrorTerms now = mirror_terms(view.eye, r.hit, r.reflector, r.reflector_normal);
   b.near = now.near || (now.ok && near_znear(depth_of(view, now.v), view.znear));
+  const double sigma = 2.0 * std::atan(double(kGgxLobeTanPerAlpha) * double(ggx_alpha(r.roughness)));
+  // The current footprint (the glossy filter's kernel), where the current mirror image is in front of the camera.
+  if (now.ok && depth_of(view, now.v) >= double(view.znear)) {
+    glm::dvec2 db[2];
+    if (footprint_bound(now, sigma, view, golden.footprint_axes, b.near, db)) b.b1 = 2.0 * db[0], b.b2 = 2.0 * db[1];
+  }
   // The previous frame's inputs: the same float operations on both sides (exact), then double.
   const InstanceMotion& T = to_previous[r.reflector_instance];
   const glm::dvec3 h_prev = transform_point(to_previous[r.hit_instance].to_previous, r.hit);
@@ -162,41 +213,8 @@ PixelBound bound(const GlossyRay& r, const std::vector<InstanceMotion>& to_previ
   const MirrorTerms before = mirror_terms(prev_view.eye, h_prev, s_prev, n_prev);
   b.near = b.near || before.near || (before.ok && near_znear(depth_of(prev_view, before.v), prev_view.znear));
   if (!now.ok || !before.ok) return b;
-  // The horizon test and the normal-incidence test.
-  const double sigma = 2.0 * std::atan(double(kGgxLobeTanPerAlpha) * double(ggx_alpha(r.roughness)));
-  const double c = std::clamp(before.cos_i, 0.0, 1.0), dc = 40.0 * kE * c + kE;
-  const double one_minus = 1.0 - std::min(c + dc, 1.0) * std::min(c + dc, 1.0);
-  const double dasin = std::min(one_minus > 0.0 ? dc / std::sqrt(one_minus) : HUGE_VAL,
-                                glm::pi<double>() / std::sqrt(2.0) * std::sqrt(dc));
-  b.near = b.near || std::abs(sigma - std::asin(c)) <= 4097.0 * kE * (sigma + glm::half_pi<double>()) + dasin;
-  if (!(sigma < std::asin(c))) return b;
-  glm::dvec3 t1 = before.incidence - glm::dot(before.n, before.incidence) * before.n;
-  b.near = b.near || std::abs(glm::length(t1) - double(kGlossyNormalIncidence)) <= 64.0 * kE;
-  if (glm::length(t1) < double(kGlossyNormalIncidence)) {
-    glm::vec3 t, unused;
-    orthonormal_basis(glm::vec3(before.n), t, unused);
-    t1 = glm::dvec3(t);
-  }
-  t1 = glm::normalize(t1);
-  const glm::dvec3 t2 = glm::cross(before.n, t1);
-  // r and its relative error (banner).
-  const double tan_sigma = std::tan(sigma), sec2 = 1.0 + tan_sigma * tan_sigma;
-  const double dtan = (kSinCos * (1.0 + tan_sigma) + 4097.0 * kE * sigma * sec2) / (std::cos(sigma) - kSinCos) +
-                      3.0 * kE * tan_sigma;
-  const double dd_rel = 5.0 * kE + before.dt_rel * before.t / (1.0 - before.t) + kE;
-  const double r_across = before.d * tan_sigma, r_along = r_across / before.cos_i;
-  const double dr_across = dd_rel + dtan / tan_sigma + 2.0 * kE, dr_along = dr_across + before.dcos_rel + 3.0 * kE;
-  const double dsc = before.dt_rel * before.t * before.len + before.t * before.dv + 2.0 * kE * glm::length(before.sc);
-  const glm::dvec3 semi[2] = {r_along * t1, r_across * t2};
-  const double dsemi[2] = {r_along * (dr_along + 20.0 * kE), r_across * (dr_across + 20.0 * kE)};
   glm::dvec2 da[2];
-  for (int k = 0; k < 2; ++k) {
-    b.near = b.near || near_znear(depth_of(prev_view, before.sc + semi[k]), prev_view.znear) ||
-             near_znear(depth_of(prev_view, before.sc - semi[k]), prev_view.znear);
-    da[k] = 0.5 * (screen_bound(prev_view, before.sc + semi[k], dsc + dsemi[k]) +
-                   screen_bound(prev_view, before.sc - semi[k], dsc + dsemi[k])) +
-            kE * glm::abs(glm::dvec2(golden.axes[k]));
-  }
+  if (!footprint_bound(before, sigma, prev_view, golden.axes, b.near, da)) return b;
   // The Gaussian pair: rho = |n|, Box-Muller's radius (banner).
   const glm::dvec2 n12(glossy_normal_pair(r.seed));
   const double rho = glm::length(n12), q = rho * rho;
@@ -217,7 +235,7 @@ PixelBound bound(const GlossyRay& r, const std::vector<InstanceMotion>& to_previ
 }
 
 struct Counts {
-  int invalid = 0, valid = 0, near = 0;
+  int invalid = 0, valid = 0, near = 0, footprints = 0;
 };
 
 double worst_over(glm::vec2 gpu, glm::vec2 golden, glm::dvec2 limit, double& worst, double& ratio) {
@@ -241,16 +259,21 @@ Counts check_port(VulkanContext& context, const FrameGeometry& g, const Frame& f
   const std::vector<InstanceMotion> to_previous = instance_to_previous(g.pose, g.prev_pose);
   Counts c;
   size_t flag_mismatches = 0, invalid_mismatches = 0, over = 0;
-  double worst_mu = 0, worst_a = 0, worst_a_rel = 0, worst_m = 0, ratio = 0;
+  double worst_mu = 0, worst_a = 0, worst_a_rel = 0, worst_m = 0, worst_b = 0, ratio = 0;
   for (size_t i = 0; i < golden.size(); ++i) {
     const PixelBound b = bound(rays.at(i), to_previous, g.view, g.prev_view, golden[i]);
     if (b.near) {
       ++c.near;
       continue;
     }
-    if (gpu[i].valid != golden[i].valid) {
+    if (gpu[i].valid != golden[i].valid || gpu[i].has_footprint != golden[i].has_footprint) {
       ++flag_mismatches;
       continue;
+    }
+    if (golden[i].has_footprint) {  // the current footprint, b1 and b2
+      ++c.footprints;
+      over += worst_over(gpu[i].footprint_axes[0], golden[i].footprint_axes[0], b.b1, worst_b, ratio);
+      over += worst_over(gpu[i].footprint_axes[1], golden[i].footprint_axes[1], b.b2, worst_b, ratio);
     }
     if (!golden[i].valid) {
       ++c.invalid;
@@ -267,7 +290,8 @@ Counts check_port(VulkanContext& context, const FrameGeometry& g, const Frame& f
     over += worst_over(gpu[i].motion, golden[i].motion, b.motion, worst_m, ratio);
   }
   WARN("measured max |gpu - golden| on " << context.device_name() << ": mu " << worst_mu << " px, a1/a2 "
-                                         << worst_a << " px (" << worst_a_rel << " of |a_k|), m^R " << worst_m
+                                         << worst_a << " px (" << worst_a_rel << " of |a_k|), b1/b2 " << worst_b
+                                         << " px over " << c.footprints << " current footprints, m^R " << worst_m
                                          << " px (at most " << ratio << " of the bound) over " << c.valid
                                          << " valid pixels; " << c.invalid << " invalid (" << invalid_mismatches
                                          << " not (0, 0)); " << c.near << " near a threshold (not compared); "
@@ -457,6 +481,7 @@ TEST_CASE("the glossy motion port matches glossy_motion on the glossy scene's fl
   WARN("motion_glossy dispatch " << ms << " ms (" << w << "x" << h << ") on " << context->device_name());
   CHECK(ms > 0.0);
   CHECK(c.valid > 100);  // the floor's reflections (tests/motion_glossy_test.cpp)
+  CHECK(c.footprints >= c.valid / 2);  // the current footprint where the previous one is, but for the frame's edges
   CHECK(c.invalid > 0);
   // Other lobes, from GGX's narrowest to past the plane's horizon, and other draws.
   CHECK(check_port(*context, g, redrawn(frame, 5u)).valid > 100);

@@ -1,6 +1,5 @@
-// Tests of gpu/motion_shadow_gpu.cpp: the Vulkan ports of the shadow motion vector [TRMV21 Eq. 3]
-// (motion/shadow.comp) and of its splat [TRMV21 Sec. 4.1] (motion/shadow_splat.comp) against the golden
-// shadow_motion() and splat_shadow_motion() (motion/shadow.cpp, motion/shadow_splat.cpp), on rendered frames of the
+// Tests of gpu/motion_shadow_gpu.cpp: the Vulkan port of the shadow motion vector [TRMV21 Eq. 3]
+// (motion/shadow.comp) against the golden shadow_motion() (motion/shadow.cpp), on rendered frames of the
 // fence (a moving blocker) and falling-light (a moving light) scenes and on random inputs, with the validation layer
 // on. Skipped, with a message, where no Vulkan device exists.
 //
@@ -31,18 +30,14 @@
 // t and its error large). A simulated device whose divisions are 2 ulp and square roots 4 ulp off, either way,
 // stays within 0.44 of it (the first test case). Divisions outside [2^-126, 2^126] have no stated precision in
 // Vulkan; no input here comes near.
-// Bound, splat. The same sums in the same order (the window row by row, left to right), and the same depth tests
-// (|z_q - z_p| > 0.1 max(z_q, z_p): abs, -, * and max, correctly rounded on both sides): `landed` is exact, and so
-// is a pixel where nothing landed (the surface motion, or (0, 0)). The mean sum / count is the device's division:
-// within 3 e |mean| per component (2.5 + 0.5 ulp).
-// On a CPU device (lavapipe) the square root and the divisions round correctly, so both ports are bit-exact there.
-// Measured worst on lavapipe (llvmpipe, LLVM 15), over every input and all four builds here: 0 for the shadow motion
-// and 0 for the splat (bit-exact); no pixel near a threshold.
+// On a CPU device (lavapipe) the square root and the divisions round correctly, so the port is bit-exact there.
+// Measured worst on lavapipe (llvmpipe, LLVM 15), over every input and all four builds here: 0 (bit-exact); no pixel
+// near a threshold. The splat of these vectors is the filter's (filters/trmv/splat.h), tested with its port in
+// tests/gpu_trmv_splat_test.cpp.
 #include "gpu/motion_shadow_gpu.h"
 
 #include "core/error.h"
 #include "motion/shadow.h"
-#include "motion/shadow_splat.h"
 #include "raster/gbuffer_frame.h"
 #include "scene_fixtures.h"
 #include "scenes/gltf_loader.h"
@@ -170,7 +165,7 @@ struct Counts {
 double diff(float a, float b) { return std::isnan(a) || std::isnan(b) ? HUGE_VAL : std::abs(double(a) - double(b)); }
 
 // The shadow port and the golden pass on one frame: the golden validity exactly (away from the thresholds), m^V
-// within the banner's per-pixel bound. Returns the golden vectors, for the splat.
+// within the banner's per-pixel bound. Returns the golden vectors.
 std::vector<ShadowMotion> check_shadow_port(VulkanContext& context, const FrameGeometry& g, const Frame& frame,
                                             Counts& c, double* ms = nullptr) {
   const std::vector<ShadowMotion> golden = shadow_motion(g, frame);
@@ -212,35 +207,6 @@ std::vector<ShadowMotion> check_shadow_port(VulkanContext& context, const FrameG
   CHECK(validity_mismatches == 0);
   CHECK(over_bound == 0);
   return golden;
-}
-
-// The splat port and the golden pass on the same inputs: `landed` and the pixels where nothing landed exactly, the
-// means within 3 e of their size.
-void check_splat_port(VulkanContext& context, const std::vector<ShadowMotion>& shadow,
-                      const std::vector<glm::vec2>& surface, const std::vector<float>& depth, int w, int h, int size,
-                      double* ms = nullptr) {
-  const std::vector<SplatMotion> golden = splat_shadow_motion(shadow, surface, depth, w, h, size);
-  const std::vector<SplatMotion> gpu = splat_shadow_motion_vulkan(context, shadow, surface, depth, w, h, size, ms);
-  REQUIRE(gpu.size() == golden.size());
-  size_t exact_mismatches = 0, over_bound = 0, landed = 0;
-  double worst = 0.0;
-  for (size_t i = 0; i < golden.size(); ++i) {
-    exact_mismatches += gpu[i].landed != golden[i].landed;
-    if (!golden[i].landed) {
-      exact_mismatches += gpu[i].motion != golden[i].motion;
-      continue;
-    }
-    ++landed;
-    for (int a = 0; a < 2; ++a) {
-      const double d = diff(gpu[i].motion[a], golden[i].motion[a]);
-      over_bound += !(d <= 3.01 * kE * std::abs(double(golden[i].motion[a])));  // 3 e, and e^2 terms
-      worst = std::max(worst, d);
-    }
-  }
-  WARN("splat (" << size << "x" << size << "): measured max |gpu - golden| on " << context.device_name() << ": "
-                 << worst << " px over " << landed << " pixels where vectors landed");
-  CHECK(exact_mismatches == 0);
-  CHECK(over_bound == 0);
 }
 
 // Frame `index` of a shipped scene with its geometry, at 1 spp, as `rtdr render` makes it.
@@ -306,23 +272,6 @@ RenderedFrame random_inputs(std::mt19937& rng, int w, int h) {
   r.frame.add_uint("path.blocker.instance") = blocker_id;
   r.frame.add_uint("id.instance") = receiver_id;
   return r;
-}
-
-// Random splat inputs: a third of the vectors valid, surfaces at a few depths (some within 10 % of each other, one
-// at the edge of it), some pixels without a surface.
-void random_splat_inputs(std::mt19937& rng, int w, int h, std::vector<ShadowMotion>& shadow,
-                         std::vector<glm::vec2>& surface, std::vector<float>& depth) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  const float depths[5] = {1.0f, 1.05f, 1.0f / 0.9f, 2.0f, 0.0f};
-  const size_t n = size_t(w) * size_t(h);
-  shadow.assign(n, {});
-  surface.assign(n, glm::vec2(0.0f));
-  depth.assign(n, 0.0f);
-  for (size_t i = 0; i < n; ++i) {
-    if (u(rng) < 0.35f) shadow[i] = {10.0f * glm::vec2(u(rng), u(rng)) - 5.0f, true};
-    surface[i] = 4.0f * glm::vec2(u(rng), u(rng)) - 2.0f;
-    depth[i] = depths[std::min(4, int(5.0f * u(rng)))] * (1.0f + 0.001f * u(rng));
-  }
 }
 
 // A device as far from C++ as Vulkan lets it be, simulated: shadow_motion_pixel's operations in the golden order,
@@ -396,7 +345,7 @@ TEST_CASE("the shadow motion bound holds for a simulated device whose divisions 
   CHECK(differ > compared / 2);  // the simulation does move the vectors
 }
 
-TEST_CASE("the shadow motion ports match shadow_motion and splat_shadow_motion on rendered frames") {
+TEST_CASE("the shadow motion port matches shadow_motion on rendered frames") {
   const auto context = validated_context();
   const int w = 64, h = 36;
   int valid = 0;
@@ -404,18 +353,13 @@ TEST_CASE("the shadow motion ports match shadow_motion and splat_shadow_motion o
     INFO(name << " frame " << index);
     const RenderedFrame r = render(name, index, w, h);
     shadow_motion_vulkan(*context, r.geometry, r.frame);  // warm-up: lavapipe compiles
-    double shadow_ms = 0.0, splat_ms = 0.0;
+    double shadow_ms = 0.0;
     Counts c;
-    const std::vector<ShadowMotion> golden = check_shadow_port(*context, r.geometry, r.frame, c, &shadow_ms);
+    check_shadow_port(*context, r.geometry, r.frame, c, &shadow_ms);
     CHECK(c.near_threshold == 0);
     valid += c.valid;
-    // The splat on the golden vectors, as write_shadow_motion_layers feeds it.
-    check_splat_port(*context, golden, r.frame.get_vec2("motion"), r.geometry.vis.depth, w, h, kShadowSplatSize,
-                     &splat_ms);
-    WARN("motion_shadow dispatch " << shadow_ms << " ms, motion_shadow_splat " << splat_ms << " ms (" << w << "x" << h
-                                   << ") on " << context->device_name());
+    WARN("motion_shadow dispatch " << shadow_ms << " ms (" << w << "x" << h << ") on " << context->device_name());
     CHECK(shadow_ms > 0.0);
-    CHECK(splat_ms > 0.0);
   }
   CHECK(valid > 50);  // moving shadows on both
   check_no_validation_messages(*context);
@@ -443,22 +387,7 @@ TEST_CASE("the shadow motion port matches shadow_motion on random rays of an odd
   check_no_validation_messages(*context);
 }
 
-TEST_CASE("the shadow splat port matches splat_shadow_motion on random planes, every window size") {
-  const auto context = validated_context();
-  std::mt19937 rng(11);
-  const int w = 41, h = 29;
-  std::vector<ShadowMotion> shadow;
-  std::vector<glm::vec2> surface;
-  std::vector<float> depth;
-  random_splat_inputs(rng, w, h, shadow, surface, depth);
-  for (const int size : {kShadowSplatSize, 1, 3, 61}) {
-    INFO("window " << size);
-    check_splat_port(*context, shadow, surface, depth, w, h, size);
-  }
-  check_no_validation_messages(*context);
-}
-
-TEST_CASE("the shadow motion ports reject what the golden passes reject") {
+TEST_CASE("the shadow motion port rejects what the golden pass rejects") {
   const auto context = validated_context();
   std::mt19937 rng(3);
   RenderedFrame r = random_inputs(rng, 12, 10);
@@ -467,10 +396,4 @@ TEST_CASE("the shadow motion ports reject what the golden passes reject") {
   CHECK_THROWS_AS(shadow_motion_vulkan(*context, other, r.frame), Error);
   Frame missing(12, 10);
   CHECK_THROWS_AS(shadow_motion_vulkan(*context, r.geometry, missing), Error);
-  const std::vector<ShadowMotion> shadow(120);
-  const std::vector<glm::vec2> surface(120);
-  const std::vector<float> depth(120, 1.0f);
-  CHECK_THROWS_AS(splat_shadow_motion_vulkan(*context, shadow, surface, std::vector<float>(119), 12, 10, 9), Error);
-  CHECK_THROWS_AS(splat_shadow_motion_vulkan(*context, shadow, surface, depth, 12, 10, 4), Error);
-  CHECK_THROWS_AS(splat_shadow_motion_vulkan(*context, shadow, surface, depth, 12, 10, 0), Error);
 }

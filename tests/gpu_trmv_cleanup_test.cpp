@@ -154,11 +154,10 @@ TEST_CASE("the TRMV clean-up port matches trmv_cleanup_pass after the temporal b
   const SurfacePlanes s = SurfacePlanes::from_frame(current);
   // The golden temporal blend of the indirect diffuse light along the surface motion, clamped with gamma 3.
   const TrmvParams params;
-  const TrmvMotion surface{xy_plane(current, "motion"), {}, {}, {}};
-  const TrmvHistory prev{rgb_plane(previous, "indirect.diffuse"), previous.uint_channel("id.mesh")};
-  const TrmvTemporalOutput temporal = trmv_temporal_pass(rgb_plane(current, "indirect.diffuse"),
-                                                         current.uint_channel("id.mesh"), surface, prev,
-                                                         FloatPlane{}, params);
+  const TrmvMotion surface{xy_plane(current, "motion"), {}, {}, {}, {}};
+  const TrmvHistory prev{rgb_plane(previous, "indirect.diffuse"), SurfacePlanes::from_frame(previous)};
+  const TrmvTemporalOutput temporal =
+      trmv_temporal_pass(rgb_plane(current, "indirect.diffuse"), s, surface, prev, FloatPlane{}, params, SvgfParams{});
   std::mt19937 rng(4);
   const FloatPlane alpha_v = random_alpha_v(rng, w, h, params.alpha);
   check_port(*context, temporal, alpha_v, s, params, SvgfParams{});

@@ -38,6 +38,8 @@
 #include "filters/image.h"
 #include "filters/trmv/falloff.h"
 #include "filters/trmv/falloff_shared.h"
+#include "filters/trmv/footprint.h"
+#include "filters/trmv/trmv.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -150,9 +152,11 @@ struct RandomInputs {
 
 RandomInputs random_inputs(std::mt19937& rng, int w, int h) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  RandomInputs in{{RgbPlane(w, h), RgbPlane(w, h), random_mesh(rng, w, h, 0.1f)},
-                  {Vec2Plane(w, h), UIntPlane(w, h), {}, {}},
-                  {RgbPlane(w, h), random_mesh(rng, w, h, 0.1f)}};
+  // The receivers stand still (surface motion 0): with falloff_carry, s_i and n(s_i) are the previous frame's at
+  // the same pixel where it shows the same mesh.
+  RandomInputs in{{RgbPlane(w, h), RgbPlane(w, h), random_mesh(rng, w, h, 0.1f), Vec2Plane(w, h)},
+                  {Vec2Plane(w, h), UIntPlane(w, h), {}, {}, {}},
+                  {RgbPlane(w, h), RgbPlane(w, h), random_mesh(rng, w, h, 0.1f)}};
   // Pixel (x, y) sees the floor point (x / 8 - 2, 0, y / 8 - 1); the previous frame saw the same points.
   const auto floor_point = [](float px, float py) { return glm::vec3(px / 8.0f - 2.0f, 0.0f, py / 8.0f - 1.0f); };
   for (int y = 0; y < h; ++y)
@@ -161,6 +165,7 @@ RandomInputs random_inputs(std::mt19937& rng, int w, int h) {
       glm::vec3 n(0.0f, 1.0f, 0.0f);
       if (u(rng) < 0.2f) n = glm::vec3(0.3f * u(rng) - 0.15f, 0.5f + u(rng), 0.3f * u(rng) - 0.15f);  // not unit
       in.receiver.normal.at(x, y) = n;
+      in.prev.normal.at(x, y) = n;
       in.prev.position.at(x, y) = floor_point(float(x) + 0.5f, float(y) + 0.5f);
     }
   for (int y = 0; y < h; ++y)
@@ -212,7 +217,7 @@ TEST_CASE("the TRMV falloff port matches trmv_falloff_pass on random planes of a
     CHECK(c.angle > 0);
     CHECK(c.near_threshold == 0);
     // Every vector valid (the validity plane empty), another alpha.
-    check_port(*context, in.receiver, {in.motion.motion, {}, {}, {}}, in.prev, params_with(0.3f, sigma));
+    check_port(*context, in.receiver, {in.motion.motion, {}, {}, {}, {}}, in.prev, params_with(0.3f, sigma));
   }
   const TrmvParams params = params_with(0.1f, 0.1f);
   // First frame (empty previous positions): no evidence anywhere.
@@ -234,11 +239,14 @@ TEST_CASE("the TRMV falloff port matches trmv_falloff_pass on a rendered frame p
   const int w = 64, h = 36;
   const Frame previous = render_frame(scene, 19, w, h, {}), current = render_frame(scene, 20, w, h, {});
   // The inputs as filters/trmv/trmv.cpp's prepare_visibility builds them.
-  const TrmvMotion shadow{xy_plane(current, "motion.shadow_splat"), current.uint_channel("motion.shadow_splat.valid"),
-                          {}, {}};
+  const SurfacePlanes surface = SurfacePlanes::from_frame(current);
+  const TrmvSplatOutput splat =
+      trmv_splat_pass(trmv_splat_planes(current, surface, FloatPlane()), trmv_windows(TrmvParams{}, h).splat_size);
+  const TrmvMotion shadow{splat.motion, splat.landed, {}, {}, {}};
   const TrmvReceiver receiver{xyz_plane(current, "position"), xyz_plane(current, "geonormal"),
-                              current.uint_channel("id.mesh")};
-  const TrmvPreviousPositions prev{xyz_plane(previous, "position"), previous.uint_channel("id.mesh")};
+                              current.uint_channel("id.mesh"), surface.motion};
+  const TrmvPreviousPositions prev{xyz_plane(previous, "position"), xyz_plane(previous, "geonormal"),
+                                   previous.uint_channel("id.mesh")};
   const TrmvParams params;  // alpha 0.1, sigma 0.1
   double ms = 0.0;
   const Counts c = check_port(*context, receiver, shadow, prev, params, &ms);
@@ -251,14 +259,14 @@ TEST_CASE("the TRMV falloff port matches trmv_falloff_pass on a rendered frame p
 
 TEST_CASE("the TRMV falloff port rejects planes of different sizes") {
   const auto context = validated_context();
-  const TrmvReceiver receiver{RgbPlane(12, 12), RgbPlane(12, 12), UIntPlane(12, 12)};
-  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, {RgbPlane(12, 12), RgbPlane(12, 11), UIntPlane(12, 12)},
-                                      {Vec2Plane(12, 12), {}, {}, {}}, {}, TrmvParams{}),
+  const TrmvReceiver receiver{RgbPlane(12, 12), RgbPlane(12, 12), UIntPlane(12, 12), Vec2Plane(12, 12)};
+  const TrmvReceiver short_normal{RgbPlane(12, 12), RgbPlane(12, 11), UIntPlane(12, 12), Vec2Plane(12, 12)};
+  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, short_normal, {Vec2Plane(12, 12), {}, {}, {}, {}}, {}, TrmvParams{}),
                   Error);
-  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, receiver, {Vec2Plane(12, 12), UIntPlane(11, 12), {}, {}}, {},
+  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, receiver, {Vec2Plane(12, 12), UIntPlane(11, 12), {}, {}, {}}, {},
                                       TrmvParams{}),
                   Error);
-  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, receiver, {Vec2Plane(12, 12), {}, {}, {}},
-                                      {RgbPlane(12, 12), UIntPlane(11, 12)}, TrmvParams{}),
+  CHECK_THROWS_AS(trmv_falloff_vulkan(*context, receiver, {Vec2Plane(12, 12), {}, {}, {}, {}},
+                                      {RgbPlane(12, 12), RgbPlane(12, 12), UIntPlane(11, 12)}, TrmvParams{}),
                   Error);
 }

@@ -36,7 +36,9 @@
 #include "gpu/trmv_temporal_gpu.h"
 
 #include "core/error.h"
+#include "filters/trmv/footprint.h"
 #include "filters/trmv/temporal.h"
+#include "filters/trmv/trmv.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
 
@@ -102,28 +104,35 @@ void check_within_bound(const TrmvTemporalOutput& gpu, const TrmvTemporalOutput&
 }
 
 // Port and golden pass on the same inputs, compared within the banner's bound for these inputs.
-void check_port(VulkanContext& context, const RgbPlane& filtered, const UIntPlane& mesh, const TrmvMotion& motion,
+void check_port(VulkanContext& context, const RgbPlane& filtered, const SurfacePlanes& cur, const TrmvMotion& motion,
                 const TrmvHistory& prev, const FloatPlane& alpha, const TrmvParams& params, double* ms = nullptr) {
-  const TrmvTemporalOutput golden = trmv_temporal_pass(filtered, mesh, motion, prev, alpha, params);
-  const TrmvTemporalOutput gpu = trmv_temporal_vulkan(context, filtered, mesh, motion, prev, alpha, params, ms);
+  const SvgfParams svgf;
+  const TrmvTemporalOutput golden = trmv_temporal_pass(filtered, cur, motion, prev, alpha, params, svgf);
+  const TrmvTemporalOutput gpu = trmv_temporal_vulkan(context, filtered, cur, motion, prev, alpha, params, svgf, ms);
   check_within_bound(gpu, golden, derived_bounds(largest_input(filtered, motion, prev), params.clamp_gamma),
                      context.cpu_device());
 }
 
-UIntPlane random_mesh(std::mt19937& rng, int w, int h, float uncovered) {
+// The previous G-buffer: `cur` with a fifth of its pixels on another mesh, a tilted normal or a farther depth, so
+// that each history test keeps some taps and drops others.
+SurfacePlanes changed_surface(std::mt19937& rng, const SurfacePlanes& cur) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  UIntPlane mesh(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      mesh.at(x, y) = u(rng) < uncovered ? kInvalidId : uint32_t(x > w / 2) + uint32_t(u(rng) < 0.1f);
-  return mesh;
+  SurfacePlanes prev = cur;
+  for (size_t i = 0; i < prev.mesh.data.size(); ++i) {
+    const float r = u(rng);
+    if (r < 0.07f) prev.mesh.data[i] = prev.mesh.data[i] == kInvalidId ? 0u : prev.mesh.data[i] + 1u;
+    else if (r < 0.14f) prev.normal.data[i] = glm::normalize(prev.normal.data[i] + glm::vec3(2.0f, 0.0f, 0.0f));
+    else if (r < 0.20f) prev.depth.data[i] *= 1.5f;
+  }
+  return prev;
 }
 
 // Motion within +-1.5 pixels (fractional), some vectors a few pixels off the image's far side, a few far off any
 // screen (as kMotionBehindCamera); 10% invalid; 5% of the pixels with a re-shaded history.
 TrmvMotion random_motion(std::mt19937& rng, int w, int h) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  TrmvMotion m{Vec2Plane(w, h), UIntPlane(w, h), random_plane(rng, w, h, 0.0f, 4.0f), UIntPlane(w, h)};
+  TrmvMotion m{Vec2Plane(w, h), UIntPlane(w, h), UIntPlane(w, h), random_plane(rng, w, h, 0.0f, 4.0f),
+               UIntPlane(w, h)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       glm::vec2 v = 3.0f * glm::vec2(u(rng), u(rng)) - 1.5f;
@@ -132,6 +141,7 @@ TrmvMotion random_motion(std::mt19937& rng, int w, int h) {
       else if (r < 0.08f) v = glm::vec2(1e6f, 1e6f);
       m.motion.at(x, y) = v;
       m.valid.at(x, y) = u(rng) < 0.9f ? 1u : 0u;
+      m.test.at(x, y) = uint32_t(3.0f * u(rng)) % 3u;  // kTrmvTestNone, kTrmvTestMesh or kTrmvTestSurface
       m.reshaded_valid.at(x, y) = u(rng) < 0.05f ? 1u : 0u;
     }
   return m;
@@ -165,9 +175,9 @@ TEST_CASE("the TRMV temporal port matches trmv_temporal_pass on random planes of
   std::mt19937 rng(21);
   const int w = 41, h = 29;
   const RgbPlane filtered = random_plane(rng, w, h, 0.0f, 4.0f);
-  const UIntPlane mesh = random_mesh(rng, w, h, 0.1f);
+  const SurfacePlanes cur = random_bilateral_surface(rng, w, h, true);
   const TrmvMotion motion = random_motion(rng, w, h);
-  const TrmvHistory prev{random_plane(rng, w, h, 0.0f, 4.0f), random_mesh(rng, w, h, 0.1f)};
+  const TrmvHistory prev{random_plane(rng, w, h, 0.0f, 4.0f), changed_surface(rng, cur)};
   const FloatPlane alpha = random_alpha(rng, w, h);
 
   // Every path of trmv_temporal_pixel is taken somewhere (the golden probe says which ran): no history, a
@@ -178,7 +188,8 @@ TEST_CASE("the TRMV temporal port matches trmv_temporal_pass on random planes of
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       Probe probe;
-      const TrmvTemporalPixel p = trmv_temporal_pixel(filtered, mesh, motion, prev, alpha, trmv, x, y, &probe);
+      const TrmvTemporalPixel p =
+          trmv_temporal_pixel(filtered, cur, motion, prev, alpha, trmv, SvgfParams{}, x, y, &probe);
       const float sum_w = kept_weight(probe);
       if (p.alpha == 1.0f) ++none;
       else if (sum_w < 0.0f) ++reshaded;
@@ -199,19 +210,20 @@ TEST_CASE("the TRMV temporal port matches trmv_temporal_pass on random planes of
     for (const int radius : {1, 2}) {
       INFO("gamma " << gamma << ", radius " << radius);
       const TrmvParams params = params_with(gamma, radius);
-      trmv_temporal_vulkan(*context, filtered, mesh, motion, prev, alpha, params);  // warm-up: lavapipe compiles
+      // Warm-up: lavapipe compiles.
+      trmv_temporal_vulkan(*context, filtered, cur, motion, prev, alpha, params, SvgfParams{});
       double ms = 0.0;
-      check_port(*context, filtered, mesh, motion, prev, alpha, params, &ms);
+      check_port(*context, filtered, cur, motion, prev, alpha, params, &ms);
       WARN("trmv_temporal dispatch " << ms << " ms (" << w << "x" << h << ") on " << context->device_name());
       CHECK(ms > 0.0);
-      // The optional planes empty: constant alpha, every vector valid, no re-shaded history.
-      check_port(*context, filtered, mesh, {motion.motion, {}, {}, {}}, prev, FloatPlane{}, params);
+      // The optional planes empty: constant alpha, every vector valid, no history test, no re-shaded history.
+      check_port(*context, filtered, cur, {motion.motion, {}, {}, {}, {}}, prev, FloatPlane{}, params);
     }
   // First frame (empty history), and a history of another size.
-  check_port(*context, filtered, mesh, motion, TrmvHistory{}, alpha, trmv);
+  check_port(*context, filtered, cur, motion, TrmvHistory{}, alpha, trmv);
   std::mt19937 rng2(5);
-  const TrmvHistory other{random_plane(rng2, 37, 31, 0.0f, 4.0f), random_mesh(rng2, 37, 31, 0.1f)};
-  check_port(*context, filtered, mesh, motion, other, alpha, trmv);
+  const TrmvHistory other{random_plane(rng2, 37, 31, 0.0f, 4.0f), random_bilateral_surface(rng2, 37, 31, false)};
+  check_port(*context, filtered, cur, motion, other, alpha, trmv);
   check_no_validation_messages(*context);
 }
 
@@ -221,15 +233,17 @@ TEST_CASE("the TRMV temporal port matches trmv_temporal_pass on a rendered frame
   const int w = 64, h = 36;
   const Frame previous = render_frame(scene, 3, w, h, {}), current = render_frame(scene, 4, w, h, {});
   // One component as the pipeline feeds it (filters/trmv/trmv.cpp), the noisy indirect diffuse light standing in
-  // for c~: the history is the previous frame's, with its id.mesh.
+  // for c~: the history is the previous frame's, with its G-buffer.
   const RgbPlane filtered = rgb_plane(current, "indirect.diffuse");
-  const UIntPlane& mesh = current.uint_channel("id.mesh");
-  const TrmvHistory prev{rgb_plane(previous, "indirect.diffuse"), previous.uint_channel("id.mesh")};
+  const SurfacePlanes cur = SurfacePlanes::from_frame(current);
+  const TrmvHistory prev{rgb_plane(previous, "indirect.diffuse"), SurfacePlanes::from_frame(previous)};
   // Along the surface motion with the constant alpha; and along the splatted shadow motion with its validity, a
   // per-pixel alpha and, at the dual vector's disoccluded pixels, a re-shaded history (c~ itself stands in).
-  const TrmvMotion surface{xy_plane(current, "motion"), {}, {}, {}};
-  const TrmvMotion shadow{xy_plane(current, "motion.shadow_splat"), current.uint_channel("motion.shadow_splat.valid"),
-                          filtered, current.uint_channel("motion.dual.valid")};
+  // The surface motion's history test is SVGF's; the shadow vector's none (temporal.h).
+  const TrmvMotion surface{cur.motion, {}, UIntPlane(w, h, kTrmvTestSurface), {}, {}};
+  const TrmvSplatOutput splat =
+      trmv_splat_pass(trmv_splat_planes(current, cur, FloatPlane()), trmv_windows(TrmvParams{}, h).splat_size);
+  const TrmvMotion shadow{splat.motion, splat.landed, {}, filtered, current.uint_channel("motion.dual.valid")};
   std::mt19937 rng(3);
   const FloatPlane alpha = random_alpha(rng, w, h);
   size_t shadow_valid = 0, disoccluded = 0;
@@ -240,24 +254,26 @@ TEST_CASE("the TRMV temporal port matches trmv_temporal_pass on a rendered frame
     INFO("gamma " << gamma);
     const TrmvParams params = params_with(gamma, 1);
     double ms = 0.0;
-    check_port(*context, filtered, mesh, surface, prev, FloatPlane{}, params, &ms);
+    check_port(*context, filtered, cur, surface, prev, FloatPlane{}, params, &ms);
     WARN("trmv_temporal dispatch " << ms << " ms (" << w << "x" << h << ") on " << context->device_name());
     CHECK(ms > 0.0);
-    check_port(*context, filtered, mesh, shadow, prev, alpha, params);
+    check_port(*context, filtered, cur, shadow, prev, alpha, params);
   }
   check_no_validation_messages(*context);
 }
 
 TEST_CASE("the TRMV temporal port rejects planes of different sizes and a negative clamp radius") {
   const auto context = validated_context();
-  const TrmvMotion motion{Vec2Plane(12, 12), {}, {}, {}};
-  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), UIntPlane(12, 11), motion, TrmvHistory{},
-                                       FloatPlane{}, TrmvParams{}),
+  const TrmvMotion motion{Vec2Plane(12, 12), {}, {}, {}, {}};
+  const SvgfParams svgf;
+  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), blank_surface(12, 11), motion, TrmvHistory{},
+                                       FloatPlane{}, TrmvParams{}, svgf),
                   Error);
-  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), UIntPlane(12, 12), motion,
-                                       TrmvHistory{RgbPlane(12, 12), UIntPlane(11, 12)}, FloatPlane{}, TrmvParams{}),
+  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), blank_surface(12, 12), motion,
+                                       TrmvHistory{RgbPlane(12, 12), blank_surface(11, 12)}, FloatPlane{},
+                                       TrmvParams{}, svgf),
                   Error);
-  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), UIntPlane(12, 12), motion, TrmvHistory{},
-                                       FloatPlane{}, params_with(3.0f, -1)),
+  CHECK_THROWS_AS(trmv_temporal_vulkan(*context, RgbPlane(12, 12), blank_surface(12, 12), motion, TrmvHistory{},
+                                       FloatPlane{}, params_with(3.0f, -1), svgf),
                   Error);
 }

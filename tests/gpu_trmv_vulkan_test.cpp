@@ -3,10 +3,10 @@
 // rendered sequences, with the validation layer on. Skipped, with a message, where no Vulkan device exists.
 //
 // What is asserted, and why:
-// - The spatial filter, whose dispatches filter the three components side by side (filters/trmv/spatial_shared.h):
-//   each component within the single plane's derived bound (tests/gpu_trmv_spatial_test.cpp) of the golden
-//   trmv_spatial_pass of its own input. The three share the taps' w_z and w_n and each does the single plane's
-//   operations in the same order, so side by side changes no value.
+// - The visibility's spatial filter on the device: within the single plane's derived bound
+//   (tests/gpu_trmv_spatial_test.cpp) of the golden trmv_spatial_pass of its own input, at the frame's windows
+//   (filters/trmv/footprint.h). The diffuse a-trous and the glossy lobe filter run on the host (gpu/trmv_vulkan.h):
+//   the golden passes, bit for bit.
 // - The chaining, tightly. Each component's temporal output on the device is the golden trmv_temporal_pass of the
 //   device's own inputs to it (its dumped c~_i and alpha^V, and its previous frame's dumped output as the history),
 //   within the temporal port's bound, 1e-5 relative to max(|golden|, 1e-3) (tests/gpu_trmv_temporal_test.cpp: the
@@ -25,6 +25,9 @@
 #include "eval/frame_diff.h"
 #include "filters/image.h"
 #include "filters/passes.h"
+#include "filters/trmv/atrous.h"
+#include "filters/trmv/footprint.h"
+#include "filters/trmv/reflection.h"
 #include "filters/trmv/spatial.h"
 #include "filters/trmv/temporal.h"
 #include "filters/trmv/trmv.h"
@@ -75,7 +78,7 @@ Worst compare_trmv(VulkanContext& context, const std::string& scene_name, const 
   TrmvVulkan gpu(context, params);
   Worst worst;
   Frame previous_dump;
-  UIntPlane previous_mesh;
+  SurfacePlanes previous_surface;
   for (int f = 0; f < frames; ++f) {
     INFO(scene_name << " frame " << f);
     const Frame in = render_frame(scene, f, 64, 36, settings);
@@ -87,45 +90,55 @@ Worst compare_trmv(VulkanContext& context, const std::string& scene_name, const 
     worst.colour = std::max(worst.colour, colour);
     const SurfacePlanes s = SurfacePlanes::from_frame(in);
     const TrmvParams& p = params.trmv;
-    // The spatial filter, the three components side by side in one dispatch per axis: each within the single
-    // plane's derived bound of the golden pass on its own input (tests/gpu_trmv_spatial_test.cpp).
-    const std::pair<RgbPlane, RgbPlane> spatial[3] = {
-        {grey(in.float_channel("direct.visibility")),
-         grey(dump.float_channel(layer_name(layers::kTrmvVisibilitySpatial)))},
-        {rgb_plane(in, "indirect.diffuse"), rgb_plane(dump, layer_name(layers::kTrmvDiffuseSpatial))},
-        {rgb_plane(in, "indirect.glossy"), rgb_plane(dump, layer_name(layers::kTrmvGlossySpatial))}};
-    for (const auto& [noisy, got] : spatial) {
-      const double bound = bilateral_bound(p.spatial_radius, params.svgf.sigma_n, max_value(noisy), 20.0);
-      CHECK(max_difference(got, trmv_spatial_pass(noisy, s, p, params.svgf)) <= bound);
-    }
+    const TrmvWindows win = trmv_windows(p, in.height());
+    // The visibility's spatial filter on the device: within the single plane's derived bound of the golden pass
+    // (tests/gpu_trmv_spatial_test.cpp).
+    const RgbPlane visibility = grey(in.float_channel("direct.visibility"));
+    const double bound = bilateral_bound(win.shadow_radius, params.svgf.sigma_n, max_value(visibility), 20.0);
+    // With the penumbra filter, each pixel's std per axis is the host's (dumped).
+    const RgbPlane golden_spatial =
+        p.shadow_filter == 1
+            ? trmv_spatial_pass(visibility, s, win.shadow_radius, dump.float_channel(layer_name(layers::kTrmvSigmaX)),
+                                dump.float_channel(layer_name(layers::kTrmvSigmaY)), params.svgf)
+            : trmv_spatial_pass(visibility, s, win.shadow_radius, win.shadow_sigma, params.svgf);
+    CHECK(max_difference(grey(dump.float_channel(layer_name(layers::kTrmvVisibilitySpatial))), golden_spatial) <=
+          bound);
+    // The diffuse a-trous and the glossy lobe filter run on the host (gpu/trmv_vulkan.h): the golden passes exactly.
+    if (p.diffuse_filter == 1)
+      CHECK(rgb_plane(dump, layer_name(layers::kTrmvDiffuseSpatial)).data ==
+            trmv_atrous_pass(rgb_plane(in, "indirect.diffuse"), s, win.atrous_levels, params.svgf).data);
+    if (p.glossy_filter == 1)
+      CHECK(rgb_plane(dump, layer_name(layers::kTrmvGlossySpatial)).data ==
+            trmv_reflection_pass(rgb_plane(in, "indirect.glossy"), s, TrmvFootprint::from_frame(in),
+                                 win.glossy_radius, params.svgf)
+                .data);
     // The visibility's and the glossy light's temporal pass, re-run golden on the device's own inputs.
     // The history is the previous temporal output, or its clean-up (history_after_cleanup).
-    const auto history = [&](const LayerDecl& temporal, const LayerDecl& cleaned, bool visibility) {
+    const auto history = [&](const LayerDecl& temporal, const LayerDecl& cleaned, bool grey_layer) {
       if (f == 0) return TrmvHistory{};
       const LayerDecl& layer = p.history_after_cleanup != 0 ? cleaned : temporal;
-      return TrmvHistory{visibility ? grey(previous_dump.float_channel(layer_name(layer)))
+      return TrmvHistory{grey_layer ? grey(previous_dump.float_channel(layer_name(layer)))
                                     : rgb_plane(previous_dump, layer_name(layer)),
-                         previous_mesh};
+                         previous_surface};
     };
-    const TrmvMotion vis_motion{trmv_uses_shadow(p.motion) ? xy_plane(in, "motion.shadow_splat") : s.motion, {}, {},
-                                {}};
+    TrmvSplatOutput splat;  // the splat ran on the host (gpu/trmv_vulkan.h): the golden pass
+    if (trmv_uses_splat(p)) splat = trmv_splat_pass(trmv_splat_planes(in, s, FloatPlane()), win.splat_size);
+    const TrmvMotion vis_motion = trmv_visibility_motion(splat, s.motion, p);
     const FloatPlane alpha_v =
         trmv_uses_shadow(p.motion) ? dump.float_channel(layer_name(layers::kTrmvAlphaV)) : FloatPlane();
-    const TrmvTemporalOutput vis =
-        trmv_temporal_pass(grey(dump.float_channel(layer_name(layers::kTrmvVisibilitySpatial))), s.mesh, vis_motion,
-                           history(layers::kTrmvVisibilityTemporal, layers::kTrmvVisibilityCleaned, true), alpha_v, p);
-    const TrmvMotion glossy_motion{trmv_uses_glossy(p.motion) ? glossy_or_surface_motion(in, s.motion) : s.motion,
-                                   {}, {}, {}};
-    const TrmvTemporalOutput glossy =
-        trmv_temporal_pass(rgb_plane(dump, layer_name(layers::kTrmvGlossySpatial)), s.mesh, glossy_motion,
-                           history(layers::kTrmvGlossyTemporal, layers::kTrmvGlossyCleaned, false), FloatPlane(), p);
+    const TrmvTemporalOutput vis = trmv_temporal_pass(
+        grey(dump.float_channel(layer_name(layers::kTrmvVisibilitySpatial))), s, vis_motion,
+        history(layers::kTrmvVisibilityTemporal, layers::kTrmvVisibilityCleaned, true), alpha_v, p, params.svgf);
+    const TrmvTemporalOutput glossy = trmv_temporal_pass(
+        rgb_plane(dump, layer_name(layers::kTrmvGlossySpatial)), s, trmv_glossy_motion(in, s.motion, p),
+        history(layers::kTrmvGlossyTemporal, layers::kTrmvGlossyCleaned, false), FloatPlane(), p, params.svgf);
     const double chaining =
         std::max(max_rel(grey(dump.float_channel(layer_name(layers::kTrmvVisibilityTemporal))), vis.color, 1e-3),
                  max_rel(rgb_plane(dump, layer_name(layers::kTrmvGlossyTemporal)), glossy.color, 1e-3));
     CHECK(chaining <= kTemporalRelError);
     worst.chaining = std::max(worst.chaining, chaining);
     previous_dump = std::move(dump);
-    previous_mesh = s.mesh;
+    previous_surface = s;
   }
   return worst;
 }
@@ -150,6 +163,16 @@ TEST_CASE("the Vulkan TRMV follows the golden TRMV with the traditional vector a
   params.trmv.history_after_cleanup = 1;
   const Worst worst = compare_trmv(*context, "fence", params, 4);
   WARN("trmv:motion=traditional:history_after_cleanup=1, fence: colour max relative error " << worst.colour);
+  check_no_validation_messages(*context);
+}
+
+TEST_CASE("the Vulkan TRMV follows the golden TRMV with the penumbra-sized shadow filter") {
+  const auto context = validated_context();
+  MethodParams params = method_defaults("trmv");
+  params.trmv.shadow_filter = 1;
+  const Worst worst = compare_trmv(*context, "fence", params, 3);
+  WARN("trmv:shadow_filter=1, fence: colour max relative error " << worst.colour << ", temporal against the golden "
+                                                                 << "pass on its own inputs " << worst.chaining);
   check_no_validation_messages(*context);
 }
 

@@ -285,7 +285,7 @@ TEST_CASE("cornell, nothing moves: mu equals the motion layer to 1e-3 px, and at
   const std::vector<InstanceMotion> to_previous = instance_to_previous(g.pose, g.prev_pose);
   const std::vector<GlossyMotion> all = glossy_motion(g, frame);
   int valid = 0;
-  double worst_mu = 0.0, worst_sample = 0.0, worst_in_sigmas = 0.0, largest_sigma = 0.0;
+  double worst_mu = 0.0, worst_sample = 0.0, worst_in_sigmas = 0.0, largest_sigma = 0.0, worst_footprint = 0.0;
   for (size_t i = 0; i < surface.size(); ++i) {
     GlossyRay r = rays.at(i);
     // cornell is rough (roughness 1): its lobes reach past every plane's horizon, so no pixel has a vector.
@@ -295,16 +295,26 @@ TEST_CASE("cornell, nothing moves: mu equals the motion layer to 1e-3 px, and at
     if (!mirror.valid) continue;
     ++valid;
     worst_mu = std::max(worst_mu, double(glm::length(mirror.mu - surface[i])));
+    // Nothing moves: the current footprint (the glossy filter's kernel) is Eq. 5's Sigma, up to rounding: T^{-1} is
+    // the identity to a few 1e-7 of the positions, which the narrowest lobes' short semi-axes amplify (measured
+    // 2.2e-3 of the trace at most).
+    REQUIRE(mirror.has_footprint);
+    const double scale = std::max(1e-6, double(std::abs(mirror.Sigma[0][0]) + std::abs(mirror.Sigma[1][1])));
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        worst_footprint = std::max(worst_footprint, std::abs(double(mirror.footprint[a][b] - mirror.Sigma[a][b])) / scale);
     const double sample_error = glm::length(mirror.motion - surface[i]), sigma = sqrt_trace(mirror.Sigma);
     worst_sample = std::max(worst_sample, sample_error);
     worst_in_sigmas = std::max(worst_in_sigmas, (sample_error - 1e-3) / sigma);  // beyond mu's tolerance
     largest_sigma = std::max(largest_sigma, sigma);
   }
   std::printf("cornell 64x64: %d valid pixels, worst |mu - motion| %.3g px; roughness 0: worst |m^R - motion| "
-              "%.4f px (%.2f sqrt(trace Sigma)), largest sqrt(trace Sigma) %.4f px\n",
-              valid, worst_mu, worst_sample, worst_in_sigmas, largest_sigma);
+              "%.4f px (%.2f sqrt(trace Sigma)), largest sqrt(trace Sigma) %.4f px; current footprint within %.3g of "
+              "Sigma\n",
+              valid, worst_mu, worst_sample, worst_in_sigmas, largest_sigma, worst_footprint);
   REQUIRE(valid > 1000);
   CHECK(worst_mu < 1e-3);
+  CHECK(worst_footprint < 1e-2);
   CHECK(worst_in_sigmas < 5.0);
 }
 
@@ -321,6 +331,11 @@ TEST_CASE("glossy scene: the floor's reflections have vectors, the same for 1 an
   write_glossy_motion_layers(g, frame);
   const std::vector<glm::vec2> written = frame.get_vec2("motion.glossy");
   const UIntPlane& written_valid = frame.uint_channel("motion.glossy.valid");
+  const std::vector<glm::vec2> written_mean = frame.get_vec2("motion.glossy_mean");
+  const UIntPlane& written_has_footprint = frame.uint_channel("glossy.footprint.valid");
+  const FloatPlane& footprint_xx = frame.float_channel("glossy.footprint.XX");
+  const FloatPlane& footprint_xy = frame.float_channel("glossy.footprint.XY");
+  const FloatPlane& footprint_yy = frame.float_channel("glossy.footprint.YY");
 
   const std::vector<glm::vec2> surface = frame.get_vec2("motion");
   const std::vector<glm::vec3> hit = frame.get_vec3("path.secondary");
@@ -333,6 +348,11 @@ TEST_CASE("glossy scene: the floor's reflections have vectors, the same for 1 an
     identical += one[i].valid == two[i].valid && one[i].motion == two[i].motion && one[i].Sigma == two[i].Sigma;
     CHECK(written_valid.data[i] == (one[i].valid ? 1u : 0u));
     CHECK(written[i] == one[i].motion);
+    CHECK(written_mean[i] == (one[i].valid ? one[i].mu : glm::vec2(0.0f)));
+    CHECK(written_has_footprint.data[i] == (one[i].has_footprint ? 1u : 0u));
+    CHECK(footprint_xx.data[i] == one[i].footprint[0][0]);
+    CHECK(footprint_xy.data[i] == one[i].footprint[1][0]);
+    CHECK(footprint_yy.data[i] == one[i].footprint[1][1]);
     if (metallic.data[i] != 1.0f) continue;  // the floor: metallic 1, roughness 0.15
     if (!one[i].valid) {
       floor_invalid += hit_id.data[i] != kInvalidId;  // a reflection, but no vector (motion/glossy.h says when)

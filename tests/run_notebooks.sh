@@ -15,7 +15,8 @@ trap 'rm -rf "$work"' EXIT
 "$rtdr" filter --method svgf --in "$work/gradients" --out "$work/gradients-svgf" --dump-passes > /dev/null
 "$rtdr" render --scene pillars --frames 0-7 --size 128x72 --spp 4 --out "$work/reference" > /dev/null 2>&1
 # trmv_walkthrough: one frame and the one before of fence, glossy and occlusion, and glossy's again with another seed.
-"$rtdr" render --scene fence --frames 7-8 --size 160x90 --out "$work/trmv-fence" > /dev/null
+"$rtdr" render --scene fence --frames 7-8 --size 160x90 --shading-samples 4 --out "$work/trmv-fence" > /dev/null
+"$rtdr" filter --method trmv --in "$work/trmv-fence" --out "$work/trmv-fence-trmv" --dump-passes > /dev/null
 "$rtdr" render --scene glossy --frames 19-20 --size 160x90 --out "$work/trmv-glossy" > /dev/null
 "$rtdr" render --scene glossy --frames 20 --size 160x90 --seed 1 --out "$work/trmv-glossy-reseed" > /dev/null
 "$rtdr" render --scene occlusion --frames 39-40 --size 160x90 --out "$work/trmv-occlusion" > /dev/null
@@ -25,7 +26,7 @@ trap 'rm -rf "$work"' EXIT
 export RTDR_WALKTHROUGH_IN="$work/in" RTDR_WALKTHROUGH_DUMP="$work/svgf" RTDR_EXE="$rtdr"
 export RTDR_ASVGF_IN="$work/gradients" RTDR_ASVGF_DUMP="$work/asvgf" RTDR_ASVGF_SVGF_DUMP="$work/gradients-svgf"
 export RTDR_ASVGF_REF="$work/reference"
-export RTDR_TRMV_FENCE="$work/trmv-fence" RTDR_TRMV_GLOSSY="$work/trmv-glossy"
+export RTDR_TRMV_FENCE="$work/trmv-fence" RTDR_TRMV_FENCE_DUMP="$work/trmv-fence-trmv" RTDR_TRMV_GLOSSY="$work/trmv-glossy"
 export RTDR_TRMV_GLOSSY_RESEED="$work/trmv-glossy-reseed" RTDR_TRMV_OCCLUSION="$work/trmv-occlusion"
 export RTDR_METRICS="$work/eval/metrics.csv" MPLBACKEND=Agg PYDEVD_DISABLE_FILE_VALIDATION=1
 for notebook in svgf_walkthrough speed_vs_accuracy asvgf_walkthrough trmv_walkthrough; do

@@ -419,7 +419,7 @@ TEST_CASE("per-cone estimator: 10^5 cosine-weighted samples of L = 1 + w.x avera
   }
 }
 
-TEST_CASE("transfer between two normals: the identity for equal normals, a uniform field stays uniform for any two") {
+TEST_CASE("transfer between two normals: the identity for equal normals, with share 1, and a uniform field stays uniform") {
   const ConeLayout layout = make_cone_layout();
   std::mt19937_64 rng(7);
   auto random_cones = [&]() {
@@ -437,32 +437,79 @@ TEST_CASE("transfer between two normals: the identity for equal normals, a unifo
   for (const ConeLayout& l : {layout, make_cone_layout(kConePaperHalfAngle)})
     for (const glm::vec3& n : normals) {
       const ConeValues source = random_cones();
-      const ConeValues same = transfer_cones(l, n, n, source);
-      for (int k = 0; k < kConeCount; ++k) CHECK(glm::length(same[size_t(k)] - source[size_t(k)]) < 1e-6f);
+      const ConeTransfer same = transfer_cones(l, n, n, source);
+      for (int k = 0; k < kConeCount; ++k) {
+        CHECK(glm::length(same.values[size_t(k)] - source[size_t(k)]) < 1e-6f);
+        CHECK(same.share[size_t(k)] == 1.0f);  // the source's hemisphere is the target's: all of each cone
+      }
+      // Blending with this frame's cones then changes nothing.
+      const ConeValues blended = blend_transferred(same, random_cones());
+      for (int k = 0; k < kConeCount; ++k) CHECK(glm::length(blended[size_t(k)] - source[size_t(k)]) < 1e-6f);
     }
-  // A uniform field, between every pair of normals (opposite ones too, where no cone overlaps any other and the
-  // fallback, the source mean, answers).
+  // A uniform field, between every pair of normals: each cone's carried value is the field where any source cone
+  // overlaps it; blended with this frame's field, the same, it stays uniform whatever the shares. (The former full
+  // transfer, `full`, answered opposite normals with the source mean; its values stay uniform too.)
   const glm::vec3 L(0.3f, 0.7f, 1.2f);
   ConeValues uniform{};
   uniform.fill(L);
   float worst = 0.0f;
   for (const glm::vec3& p : normals)
     for (const glm::vec3& q : normals) {
-      const ConeValues moved = transfer_cones(layout, p, q, uniform);
-      for (const glm::vec3& v : moved) worst = std::max(worst, glm::length(v - L));
+      const ConeTransfer moved = transfer_cones(layout, p, q, uniform);
+      for (const glm::vec3& v : blend_transferred(moved, uniform)) worst = std::max(worst, glm::length(v - L));
+      for (const glm::vec3& v : transfer_cones(layout, p, q, uniform, true).values)
+        worst = std::max(worst, glm::length(v - L));
     }
   const glm::vec3 up(0.0f, 0.0f, 1.0f), down(0.0f, 0.0f, -1.0f);
-  const ConeValues opposite = transfer_cones(layout, up, down, uniform);
-  for (const glm::vec3& v : opposite) worst = std::max(worst, glm::length(v - L));
+  for (const glm::vec3& v : transfer_cones(layout, up, down, uniform, true).values)
+    worst = std::max(worst, glm::length(v - L));
   std::printf("transfer of a uniform field: largest deviation %.2e over %zu normal pairs\n", double(worst),
               normals.size() * normals.size());
   CHECK(worst < 1e-6f);
   // Between opposite normals the target's axes are the source's mirrored: a_0 = -b_0 and no pair is closer than
-  // 180 - 2 psi* = 40.8 degrees, so some target cones get no overlap and take the source mean.
+  // 180 - 2 psi* = 40.8 degrees, so some target cones get no overlap: the former transfer gave them the source
+  // mean; now they have no share, and frame i's cone stands [TRMV21 Sec. 4.3, Fig. 7]. The source's hemisphere is
+  // the target's lower one: every share is 0.
   ConeValues ramp{};
   for (int m = 0; m < kConeCount; ++m) ramp[size_t(m)] = glm::vec3(float(m));
-  const ConeValues flipped = transfer_cones(layout, up, down, ramp);
-  CHECK(flipped[0].x == Approx(2.5f));  // a_0 = +z, every b_m at least pi - psi* from it: the mean 2.5
+  CHECK(transfer_cones(layout, up, down, ramp, true).values[0].x == Approx(2.5f));  // the mean of 0..5
+  const ConeTransfer flipped = transfer_cones(layout, up, down, ramp);
+  for (float f : flipped.share) CHECK(f == 0.0f);
+  ConeValues own{};
+  own.fill(glm::vec3(9.0f));
+  for (const glm::vec3& v : blend_transferred(flipped, own)) CHECK(v == glm::vec3(9.0f));
+}
+
+TEST_CASE("the transfer's share: f_k against Monte Carlo (10^6 directions) within 0.02, 1 and 0 at the ends") {
+  // f_k = Omega(C_k, H_t, H_s) / Omega(C_k, H_t) [TRMV21 Sec. 4.3, Fig. 7], counted on a 16x16 grid of the cap
+  // (cones.h); here against a Fibonacci set of the sphere, for target +z and sources tilted by 0.3, 0.8 and 1.4 rad.
+  const ConeLayout layout = make_cone_layout();
+  const glm::vec3 n_t(0.0f, 0.0f, 1.0f);
+  const ConeAxes a = cone_axes(layout, n_t);
+  float worst = 0.0f;
+  for (double tilt : {0.3, 0.8, 1.4}) {
+    const glm::vec3 n_s(float(std::sin(tilt)), 0.0f, float(std::cos(tilt)));
+    std::array<double, kConeCount> above_t{}, above_both{};
+    const int64_t points = 1000000;
+    for (int64_t i = 0; i < points; ++i) {
+      const glm::vec3 w = fibonacci_direction(i, points);
+      if (!(glm::dot(w, n_t) > 0.0f)) continue;
+      for (int k = 0; k < kConeCount; ++k)
+        if (cone_contains(layout.half_angle, a[size_t(k)], w)) {
+          above_t[size_t(k)] += 1.0;
+          above_both[size_t(k)] += glm::dot(w, n_s) > 0.0f ? 1.0 : 0.0;
+        }
+    }
+    for (int k = 0; k < kConeCount; ++k) {
+      const float expected = float(above_both[size_t(k)] / above_t[size_t(k)]);
+      const float f = cone_share_in_hemisphere(layout.half_angle, a[size_t(k)], n_t, n_s);
+      worst = std::max(worst, std::abs(f - expected));
+    }
+  }
+  std::printf("transfer share: largest |grid - Monte Carlo| %.4f\n", double(worst));
+  CHECK(worst < 0.02f);
+  CHECK(cone_share_in_hemisphere(layout.half_angle, a[0], n_t, n_t) == 1.0f);
+  CHECK(cone_share_in_hemisphere(layout.half_angle, a[0], n_t, -n_t) == 0.0f);
 }
 
 TEST_CASE("transfer of a smooth field to a tilted normal: closer to the target's own cone means than copying the cones") {
@@ -489,7 +536,7 @@ TEST_CASE("transfer of a smooth field to a tilted normal: closer to the target's
   };
   const glm::vec3 n_q(0.0f, 0.0f, 1.0f), n_p(float(std::sin(0.3)), 0.0f, float(std::cos(0.3)));
   const ConeValues source = cone_means(n_q), truth = cone_means(n_p);
-  const ConeValues moved = transfer_cones(layout, n_p, n_q, source);
+  const ConeValues moved = transfer_cones(layout, n_p, n_q, source).values;
   double error_transfer = 0.0, error_copy = 0.0;
   for (int k = 0; k < kConeCount; ++k) {
     error_transfer += std::abs(double(moved[size_t(k)].x - truth[size_t(k)].x));

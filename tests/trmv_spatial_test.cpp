@@ -31,11 +31,10 @@ SurfacePlanes tilted_surface(int w, int h, float slope) {
 }  // namespace
 
 TEST_CASE("spatial filter: a constant image stays constant, flat or tilted, RGB or scalar (the weights normalise)") {
-  TrmvParams params;  // 31x31, std 5
-  const SvgfParams edges;
+  const SvgfParams edges;  // 31x31, std 5
   for (const SurfacePlanes& s : {flat_surface(40, 33), tilted_surface(40, 33, 0.05f)}) {
-    const RgbPlane rgb = trmv_spatial_pass(RgbPlane(40, 33, glm::vec3(0.25f, 0.5f, 2.0f)), s, params, edges);
-    const FloatPlane v = trmv_spatial_pass(FloatPlane(40, 33, 0.75f), s, params, edges);
+    const RgbPlane rgb = trmv_spatial_pass(RgbPlane(40, 33, glm::vec3(0.25f, 0.5f, 2.0f)), s, 15, 5.0f, edges);
+    const FloatPlane v = trmv_spatial_pass(FloatPlane(40, 33, 0.75f), s, 15, 5.0f, edges);
     for (size_t i = 0; i < rgb.data.size(); ++i) {
       CHECK(rgb.data[i].x == Approx(0.25f).epsilon(1e-6));
       CHECK(rgb.data[i].y == Approx(0.5f).epsilon(1e-6));
@@ -48,12 +47,9 @@ TEST_CASE("spatial filter: a constant image stays constant, flat or tilted, RGB 
 TEST_CASE("spatial filter: on a flat surface a spike spreads as G(dx) G(dy) / S^2, by hand") {
   // radius 1, std 1: G(0) = 1, G(1) = e^{-1/2} = 0.60653, S = 1 + 2 G(1) = 2.21306 (w_z = w_n = 1 on the flat
   // surface). Centre 1 / S^2 = 0.204180, edge neighbours G(1) / S^2 = 0.123841, corners G(1)^2 / S^2 = 0.0751136.
-  TrmvParams params;
-  params.spatial_radius = 1;
-  params.spatial_sigma = 1.0f;
   FloatPlane spike(7, 7, 0.0f);
   spike.at(3, 3) = 1.0f;
-  const FloatPlane out = trmv_spatial_pass(spike, flat_surface(7, 7), params, SvgfParams{});
+  const FloatPlane out = trmv_spatial_pass(spike, flat_surface(7, 7), 1, 1.0f, SvgfParams{});
   CHECK(out.at(3, 3) == Approx(0.204180).epsilon(1e-5));
   CHECK(out.at(4, 3) == Approx(0.123841).epsilon(1e-5));
   CHECK(out.at(3, 2) == Approx(0.123841).epsilon(1e-5));
@@ -62,10 +58,18 @@ TEST_CASE("spatial filter: on a flat surface a spike spreads as G(dx) G(dy) / S^
   CHECK(out.at(1, 1) == 0.0f);
   CHECK(trmv_spatial_weight(1.0f, 1.0f) == Approx(0.60653066).epsilon(1e-6));
   CHECK(trmv_spatial_weight(0.0f, 5.0f) == 1.0f);  // peak 1
+  // The same std per pixel and axis (the penumbra filter's form) is the same filter; std 0 across keeps each row's
+  // own value, so the spike spreads only down its column: 1/S at the centre, G(1)/S above and below.
+  const FloatPlane ones(7, 7, 1.0f), zeros(7, 7, 0.0f);
+  const FloatPlane same = trmv_spatial_pass(spike, flat_surface(7, 7), 1, ones, ones, SvgfParams{});
+  for (size_t i = 0; i < out.data.size(); ++i) CHECK(same.data[i] == out.data[i]);
+  const FloatPlane column = trmv_spatial_pass(spike, flat_surface(7, 7), 1, zeros, ones, SvgfParams{});
+  CHECK(column.at(3, 3) == Approx(1.0 / 2.21306).epsilon(1e-5));
+  CHECK(column.at(3, 2) == Approx(0.60653 / 2.21306).epsilon(1e-5));
+  CHECK(column.at(4, 3) == 0.0f);
 }
 
 TEST_CASE("spatial filter: two faces at right angles do not mix (w_n = 0), and surfaceless taps are skipped") {
-  TrmvParams params;
   SurfacePlanes s = flat_surface(20, 6);
   FloatPlane v(20, 6, 0.0f);
   for (int y = 0; y < 6; ++y)
@@ -76,7 +80,7 @@ TEST_CASE("spatial filter: two faces at right angles do not mix (w_n = 0), and s
   // A pixel without a surface holding a large value: no tap may read it, and it passes through itself.
   s.mesh.at(4, 3) = kInvalidId;
   v.at(4, 3) = 100.0f;
-  const FloatPlane out = trmv_spatial_pass(v, s, params, SvgfParams{});
+  const FloatPlane out = trmv_spatial_pass(v, s, 15, 5.0f, SvgfParams{});
   for (int y = 0; y < 6; ++y)
     for (int x = 0; x < 20; ++x) {
       INFO("pixel " << x << ", " << y);
@@ -89,15 +93,11 @@ TEST_CASE("spatial filter: two faces at right angles do not mix (w_n = 0), and s
 TEST_CASE("spatial filter: std 0 and radius 0 are the identity exactly, and sizes are checked") {
   const RgbPlane c = noise_rgb(12, 9, 3);
   const SurfacePlanes s = tilted_surface(12, 9, 0.1f);
-  TrmvParams zero_std;
-  zero_std.spatial_sigma = 0.0f;
-  TrmvParams zero_radius;
-  zero_radius.spatial_radius = 0;
-  const RgbPlane a = trmv_spatial_pass(c, s, zero_std, SvgfParams{});
-  const RgbPlane b = trmv_spatial_pass(c, s, zero_radius, SvgfParams{});
+  const RgbPlane a = trmv_spatial_pass(c, s, 15, 0.0f, SvgfParams{});
+  const RgbPlane b = trmv_spatial_pass(c, s, 0, 5.0f, SvgfParams{});
   for (size_t i = 0; i < c.data.size(); ++i) {
     CHECK(a.data[i] == c.data[i]);
     CHECK(b.data[i] == c.data[i]);
   }
-  CHECK_THROWS_AS(trmv_spatial_pass(c, flat_surface(11, 9), TrmvParams{}, SvgfParams{}), Error);
+  CHECK_THROWS_AS(trmv_spatial_pass(c, flat_surface(11, 9), 15, 5.0f, SvgfParams{}), Error);
 }

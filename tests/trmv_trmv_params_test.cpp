@@ -21,7 +21,19 @@ TEST_CASE("trmv parameters: the paper's defaults, checked ranges, whole numbers,
   CHECK(p.cones == 1);                // the disoccluded history re-shaded from cones [TRMV21 Sec. 4.3]
   CHECK(p.cone_half_angle == 0.71f);  // covers the hemisphere (filters/trmv/cones.h)
   CHECK(p.history_after_cleanup == 0);
-  CHECK(rtdr::trmv_param_table().size() == 13);
+  CHECK(p.footprint_height == 1080);  // the paper's 1920x1080 [TRMV21 Sec. 6]
+  CHECK(p.shadow_filter == 0);        // the fixed 31x31, chosen by measurement (filters/trmv/README.md)
+  CHECK(p.splat_size == 0);           // the shadow filter's window [TRMV21 Sec. 4.1]
+  CHECK(p.diffuse_filter == 1);       // the 4-level a-trous [TRMV21 Sec. 5]
+  CHECK(p.atrous_levels == 4);        // "essentially 32x32"
+  CHECK(p.glossy_filter == 1);        // the lobe's footprint [LLK*19]
+  CHECK(p.glossy_radius == 15);
+  CHECK(p.history_test == 1);
+  CHECK(p.shadow_receiver_test == 0);
+  CHECK(p.falloff_carry == 1);
+  CHECK(p.glossy_draw == 1);          // Eq. 5's stochastic vector
+  CHECK(p.cone_transfer == 1);        // the share of each cone [TRMV21 Fig. 7]
+  CHECK(rtdr::trmv_param_table().size() == 25);
   CHECK(rtdr::trmv_motion_from_name("traditional") == 0);
   CHECK(rtdr::trmv_motion_from_name("all") == 4);
   CHECK(rtdr::trmv_motion_from_name("shadows") == -1);
@@ -39,6 +51,9 @@ TEST_CASE("trmv parameters: the paper's defaults, checked ranges, whole numbers,
   rtdr::TrmvParams even;
   even.cleanup_size = 8;
   CHECK_THROWS_WITH(rtdr::validate(even), Catch::Contains("cleanup_size"));
+  rtdr::TrmvParams even_splat;
+  even_splat.splat_size = 10;
+  CHECK_THROWS_WITH(rtdr::validate(even_splat), Catch::Contains("splat_size"));
   rtdr::TrmvParams other_motion;
   other_motion.motion = 5;  // 0 traditional, 1 shadow, 2 dual, 3 glossy, 4 all
   CHECK_THROWS_WITH(rtdr::validate(other_motion), Catch::Contains("motion"));

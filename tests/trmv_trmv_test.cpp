@@ -7,6 +7,9 @@
 #include "filters/passes.h"
 #include "filters/svgf/modulate.h"
 #include "filters/svgf/tonemap.h"
+#include "filters/trmv/atrous.h"
+#include "filters/trmv/footprint.h"
+#include "filters/trmv/reflection.h"
 #include "filters/trmv/spatial.h"
 #include "scenes/gltf_loader.h"
 #include "trace/render_frame.h"
@@ -54,19 +57,27 @@ struct ThreadCountGuard {
 
 }  // namespace
 
-TEST_CASE("trmv's first frame is the spatial filter of visibility, diffuse and glossy light, remodulated: no history yet") {
-  const Frame in = cornell_frames(1)[0];
+TEST_CASE("trmv's first frame is each component's spatial filter, remodulated: no history yet") {
+  // The glossy scene: its floor has a lobe footprint, the walls none (rough, wider than any window).
+  const Frame in = scene_frames("glossy", 20, 1)[0];
   const MethodParams params = method_defaults("trmv");
   const std::unique_ptr<Method> method = make_method("trmv");
   const Frame out = method->filter(in);
   // By hand: no history gives alpha = 1, and no clamp and alpha^V = alpha give the clean-up std 0, the identity.
+  // The windows at 27 rows (footprint.h): the shadow filter 3x3 (31 x 27/1080 = 0.78, the floor), std 5/15,
+  // one a-trous level, the lobe filter's cap 3x3.
   const SurfacePlanes s = SurfacePlanes::from_frame(in);
+  const TrmvWindows win = trmv_windows(params.trmv, kH);
+  CHECK(win.shadow_radius == 1);
+  CHECK(win.atrous_levels == 1);
   const FloatPlane v = in.float_channel("direct.visibility");
   RgbPlane v_rgb(kW, kH);
   for (size_t i = 0; i < v.data.size(); ++i) v_rgb.data[i] = glm::vec3(v.data[i]);
-  const RgbPlane v_filtered = trmv_spatial_pass(v_rgb, s, params.trmv, params.svgf);
-  const RgbPlane indirect = sum(trmv_spatial_pass(rgb_plane(in, "indirect.diffuse"), s, params.trmv, params.svgf),
-                                trmv_spatial_pass(rgb_plane(in, "indirect.glossy"), s, params.trmv, params.svgf));
+  const RgbPlane v_filtered = trmv_spatial_pass(v_rgb, s, win.shadow_radius, win.shadow_sigma, params.svgf);
+  const RgbPlane diffuse = trmv_atrous_pass(rgb_plane(in, "indirect.diffuse"), s, win.atrous_levels, params.svgf);
+  const RgbPlane glossy = trmv_reflection_pass(rgb_plane(in, "indirect.glossy"), s, TrmvFootprint::from_frame(in),
+                                               win.glossy_radius, params.svgf);
+  const RgbPlane indirect = sum(diffuse, glossy);
   RgbPlane direct = rgb_plane(in, "direct.shading");
   for (size_t i = 0; i < direct.data.size(); ++i) direct.data[i] *= v_filtered.data[i].x;  // shading x Vbar
   const RgbPlane expected = remodulate(direct, indirect, rgb_plane(in, "albedo"), rgb_plane(in, "emission"));
@@ -118,7 +129,7 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
   std::vector<std::string> declared = m->dump_channels();
   std::sort(declared.begin(), declared.end());
   CHECK(channels == declared);
-  CHECK(declared.size() == 40);  // 10 scalar layers, 9 RGB ones and filter.tonemapped
+  CHECK(declared.size() == 43);  // 13 scalar layers (3 of the splat), 9 RGB ones and filter.tonemapped
 
   // The colour is the filtered visibility times the shading term, plus the filtered diffuse and glossy light,
   // remodulated.
@@ -139,7 +150,8 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
     FAIL("no term " << name);
     return std::vector<float>{};
   };
-  CHECK(m->probe_passes() == std::vector<std::string>{"trmv_spatial", "trmv_falloff", "trmv_reshade", "trmv_temporal",
+  CHECK(m->probe_passes() == std::vector<std::string>{"trmv_splat", "trmv_spatial", "trmv_falloff", "trmv_atrous",
+                                                      "trmv_reshade", "trmv_reflection", "trmv_temporal",
                                                       "trmv_cleanup", "tonemap"});
   int covered = 0;
   for (int y = 2; y < kH; y += 6)
@@ -156,6 +168,11 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
       CHECK(term(m->probe("trmv_temporal", x, y, "glossy", 0), "cbar_i", "cbar_i = c~_i")[1] ==
             dump.float_channel("filter.trmv.glossy.temporal.G").data[i]);
       CHECK_FALSE(m->probe("trmv_spatial", x, y, "direct", 0).terms().empty());
+      CHECK(term(m->probe("trmv_splat", x, y, "visibility", 0), "window side")[0] == 3.0f);  // 27 rows: 3x3
+      CHECK(term(m->probe("trmv_atrous", x, y, "diffuse", -1), "c_{i+1}(p)")[0] ==
+            dump.float_channel("filter.trmv.diffuse.spatial.R").data[i]);
+      CHECK(term(m->probe("trmv_reflection", x, y, "glossy", 0), "c~")[2] ==
+            dump.float_channel("filter.trmv.glossy.spatial.B").data[i]);
       CHECK(term(m->probe("tonemap", x, y, "", -1), "display colour")[1] ==
             dump.float_channel("filter.tonemapped.G").data[i]);
     }
@@ -163,4 +180,43 @@ TEST_CASE("trmv's dump holds exactly its declared layers, and its probe recomput
   CHECK_THROWS_AS(m->probe("atrous", 1, 1, "visibility", 0), Error);      // not one of trmv's passes
   CHECK_THROWS_AS(m->probe("trmv_cleanup", 1, 1, "indirect", 0), Error);  // not one of its components
   CHECK_THROWS_AS(m->probe("trmv_cleanup", kW, 1, "diffuse", 0), Error);  // outside the frame
+}
+
+TEST_CASE("with the penumbra-sized shadow filter the dump holds W and the std per axis, and the probe recomputes them") {
+  const std::vector<Frame> frames = cornell_frames(2);
+  MethodParams params = method_defaults("trmv");
+  params.trmv.shadow_filter = 1;
+  const std::unique_ptr<Method> m = make_method("trmv", params);
+  Frame dump;
+  for (const Frame& f : frames) m->filter(f, &dump);
+  std::vector<std::string> channels;
+  for (const auto& [name, plane] : dump.float_channels()) channels.push_back(name);
+  std::vector<std::string> declared = m->dump_channels();
+  std::sort(declared.begin(), declared.end());
+  CHECK(channels == declared);
+  CHECK(declared.size() == 46);  // the default's 43, and W, sigma_x, sigma_y
+  CHECK(m->probe_passes().front() == "trmv_penumbra");
+  const auto term = [](const Probe& p, const std::string& name) {
+    for (const Probe::Term& t : p.terms())
+      if (t.name == name) return t.value[0];
+    return -1.0f;  // not noted: a lit pixel has no W
+  };
+  const FloatPlane& width = dump.float_channel("filter.trmv.visibility.penumbra");
+  const FloatPlane& sigma_y = dump.float_channel("filter.trmv.visibility.sigma_y");
+  int blocked = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const size_t i = size_t(y * kW + x);
+      if (frames.back().uint_channel("id.mesh").data[i] == kInvalidId) continue;
+      const float w = term(m->probe("trmv_penumbra", x, y, "visibility", 0), "W");
+      if (w >= 0.0f) {
+        ++blocked;
+        CHECK(w == width.data[i]);
+      } else {
+        CHECK(width.data[i] == 0.0f);
+      }
+      // The spatial pass's vertical 1-D pass takes the pixel's own std down the image.
+      CHECK(term(m->probe("trmv_spatial", x, y, "visibility", 0), "sigma") == sigma_y.data[i]);
+    }
+  CHECK(blocked > 20);  // the cornell box's shadows
 }

@@ -33,8 +33,9 @@ struct GradientParams;
 
 // 1: the first versioned frames; 2: TRMV's shadow motion (motion.shadow, motion.shadow_splat); 3: the
 // energy-preserving dielectric (trace/brdf.h) and double-sided emitters; 4: the dual motion vector (motion.dual,
-// motion/dual.h) and the cones' samples (path.incoming, path.pdf).
-inline constexpr int kRendererVersion = 4;
+// motion/dual.h) and the cones' samples (path.incoming, path.pdf); 5: the glossy vector's lobe centre and current
+// footprint (motion.glossy_mean, glossy.footprint), and no motion.shadow_splat (the filter splats: filters/trmv/).
+inline constexpr int kRendererVersion = 5;
 
 using Attributes = std::map<std::string, std::string>;
 

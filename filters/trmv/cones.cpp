@@ -179,12 +179,35 @@ glm::vec3 reshade_cones_literal(const ConeValues& L) {
   return (1.0f / glm::pi<float>()) * sum_L * (glm::pi<float>() / 3.0f);
 }
 
-ConeValues transfer_cones(const ConeLayout& layout, glm::vec3 n_target, glm::vec3 n_source, const ConeValues& source) {
+float cone_share_in_hemisphere(float theta_c, glm::vec3 axis, glm::vec3 n_target, glm::vec3 n_source) {
+  glm::vec3 t, b;
+  orthonormal_basis(axis, t, b);  // core/geometry.h
+  const double cos_c = std::cos(double(theta_c));
+  int above_target = 0, above_both = 0;
+  // kConeShareGrid^2 directions uniform in the cap's solid angle: cos uniform in [cos theta_c, 1], azimuth uniform,
+  // at the cells' midpoints (cones.h).
+  for (int i = 0; i < kConeShareGrid; ++i) {
+    const double cos_t = 1.0 - (double(i) + 0.5) / double(kConeShareGrid) * (1.0 - cos_c);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    for (int j = 0; j < kConeShareGrid; ++j) {
+      const double phi = 2.0 * kPi * (double(j) + 0.5) / double(kConeShareGrid);
+      const glm::vec3 w = float(sin_t * std::cos(phi)) * t + float(sin_t * std::sin(phi)) * b + float(cos_t) * axis;
+      if (!(glm::dot(w, n_target) > 0.0f)) continue;  // below the target's horizon: not in Omega_k^+
+      ++above_target;
+      above_both += glm::dot(w, n_source) > 0.0f ? 1 : 0;
+    }
+  }
+  // f_k = Omega(C_k, H_t, H_s) / Omega(C_k, H_t) [TRMV21 Fig. 7].
+  return above_target > 0 ? float(above_both) / float(above_target) : 0.0f;
+}
+
+ConeTransfer transfer_cones(const ConeLayout& layout, glm::vec3 n_target, glm::vec3 n_source, const ConeValues& source,
+                            bool full) {
   const ConeAxes a = cone_axes(layout, n_target);  // a_k, the target's axes
   const ConeAxes b = cone_axes(layout, n_source);  // b_m, the source's axes
   glm::vec3 mean(0.0f);
   for (const glm::vec3& L_m : source) mean += L_m / float(kConeCount);
-  ConeValues target{};
+  ConeTransfer out;
   for (int k = 0; k < kConeCount; ++k) {
     glm::vec3 sum_wL(0.0f);
     float sum_w = 0.0f;
@@ -195,10 +218,28 @@ ConeValues transfer_cones(const ConeLayout& layout, glm::vec3 n_target, glm::vec
       sum_wL += w_km * source[size_t(m)];
       sum_w += w_km;
     }
-    // No source cone overlaps cone k: the mean of the source's cones (cones.h).
-    target[size_t(k)] = sum_w > 0.0f ? sum_wL / sum_w : mean;
+    if (full) {  // the former transfer: all of it, the source's mean where nothing overlaps (cones.h)
+      out.values[size_t(k)] = sum_w > 0.0f ? sum_wL / sum_w : mean;
+      out.share[size_t(k)] = 1.0f;
+      continue;
+    }
+    // No source cone overlaps cone k: nothing to carry, frame i's own (share 0) (cones.h).
+    if (!(sum_w > 0.0f)) continue;
+    out.values[size_t(k)] = sum_wL / sum_w;
+    // f_k: the share of cone k inside the source's hemisphere [TRMV21 Sec. 4.3, Fig. 7].
+    out.share[size_t(k)] = cone_share_in_hemisphere(layout.half_angle, a[size_t(k)], n_target, n_source);
   }
-  return target;
+  return out;
+}
+
+ConeValues blend_transferred(const ConeTransfer& transfer, const ConeValues& current) {
+  ConeValues out{};
+  for (int k = 0; k < kConeCount; ++k) {
+    const float f = transfer.share[size_t(k)];
+    // H_k = f_k L'_k + (1 - f_k) L~_k [TRMV21 Fig. 7]: the spatial content of frame i for the rest.
+    out[size_t(k)] = f * transfer.values[size_t(k)] + (1.0f - f) * current[size_t(k)];
+  }
+  return out;
 }
 
 }  // namespace rtdr

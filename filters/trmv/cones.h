@@ -22,7 +22,9 @@
 //   add_cone_sample(...): one path sample's share of the six per-cone estimates Lhat_k (unbiased).
 //   reshade_cones(layout, L): the pixel's demodulated diffuse radiance from its six cones (corrected Eq. 11);
 //   reshade_cones_literal(L): Eq. 11 as printed, which doubles a uniform field (below).
-//   transfer_cones(layout, n_target, n_source, L): a source pixel's cones seen from a target pixel's normal.
+//   transfer_cones(layout, n_target, n_source, L): a source pixel's cones seen from a target pixel's normal, each
+//     with the share of the target cone that the source's hemisphere covers [TRMV21 Sec. 4.3, Fig. 7];
+//   blend_transferred(transfer, current): those cones for their share, this frame's cones for the rest.
 //
 // The layout: why not the paper's. The paper asks for "6 slightly overlapping cones with equal solid angles
 // pi/3" and computes their overlap with the half-angle pi/6 [TRMV21 Sec. 4.3, Eq. 9-10]. These disagree: a cone
@@ -87,8 +89,19 @@
 //   transferring to itself (n_target = n_source) would blur each cone into its neighbours; at theta_T = 33.41
 //   degrees only b_k overlaps a_k then, and the transfer is the identity. The 0.0005 rad keeps rounding of the
 //   world axes from making neighbours touch.
-// - No source cone overlaps a target cone (normals far apart): the target cone takes the mean of the six source
-//   cones, the best guess with no directional evidence. A uniform field stays uniform either way.
+// - The share [TRMV21 Sec. 4.3, Fig. 7: directions outside the overlap of the two hemispheres "should remain using
+//   only the spatial content from frame i"]: the source's cones hold the radiance of the source's hemisphere only.
+//   Target cone k estimates the mean radiance of its part above the target's horizon (Omega_k^+, above), so the
+//   share is that part's fraction inside the source's hemisphere too:
+//     f_k = Omega(C_k, H_t, H_s) / Omega(C_k, H_t),   C_k the cap, H_t and H_s the two hemispheres,
+//   counted on kConeShareGrid^2 directions of C_k uniform in solid angle (a midpoint grid in (cos, azimuth) about
+//   a_k: an intersection of a cap and two half-spaces has no closed form short of spherical polygons; the grid's
+//   error, under 2 % of the cap, is tested against Monte Carlo). Equal normals give f_k = 1 exactly. The history is
+//     H_k = f_k L'_k + (1 - f_k) L~_k,  L~_k the pixel's own cone of frame i (filtered)
+//   (blend_transferred).
+//   A target cone that no source cone overlaps (normals far apart) has no transferred radiance: f_k = 0, frame i's
+//   own. (Before: a full transfer, f_k = 1, and such a cone took the mean of the source's six; TrmvParams
+//   cone_transfer = 0 keeps that for comparison.)
 // - n must be unit length; the basis is Duff et al.'s, core/geometry.h's orthonormal_basis, as the BSDF's.
 #pragma once
 
@@ -110,6 +123,8 @@ inline constexpr float kConeCoveringHalfAngle = 0.7100f;
 inline constexpr float kConePaperHalfAngle = 0.52359878f;
 // The side of the (u, phi) quadrature grid of c_k (above).
 inline constexpr int kConeQuadratureGrid = 1024;
+// The side of the (cos, azimuth) grid of a cone's directions that counts f_k, the transfer's share (above).
+inline constexpr int kConeShareGrid = 16;
 
 using ConeValues = std::array<glm::vec3, kConeCount>;
 using ConeAxes = std::array<glm::vec3, kConeCount>;
@@ -155,8 +170,23 @@ glm::vec3 reshade_cones(const ConeLayout& layout, const ConeValues& L);
 // L = f_r sum_k L_k pi/3, f_r = 1/pi: Eq. 11 as printed [TRMV21 Eq. 11]; 2 L for a uniform field.
 glm::vec3 reshade_cones_literal(const ConeValues& L);
 
+// f_k: the share of the part of a cone (half-angle theta_c, unit `axis`) above the target's horizon (unit n_target)
+// that lies above the source's too (unit n_source) [TRMV21 Sec. 4.3, Fig. 7] (above); 0 when no part is above the
+// target's horizon.
+float cone_share_in_hemisphere(float theta_c, glm::vec3 axis, glm::vec3 n_target, glm::vec3 n_source);
+
+// A transfer's result: the carried cones L'_k and each target cone's share f_k (0 where no source cone overlaps).
+struct ConeTransfer {
+  ConeValues values{};
+  std::array<float, kConeCount> share{};
+};
+
 // The source pixel's cones (around n_source) carried to the target pixel's cones (around n_target), weighted by
-// the overlap of each pair of cones [TRMV21 Sec. 4.3, Eq. 9-10] at layout.transfer_half_angle (above).
-ConeValues transfer_cones(const ConeLayout& layout, glm::vec3 n_target, glm::vec3 n_source, const ConeValues& source);
+// the overlap of each pair of cones [TRMV21 Sec. 4.3, Eq. 9-10] at layout.transfer_half_angle, with their shares
+// (above). `full` = true: the former transfer, every share 1 and the source's mean where no source cone overlaps.
+ConeTransfer transfer_cones(const ConeLayout& layout, glm::vec3 n_target, glm::vec3 n_source, const ConeValues& source,
+                            bool full = false);
+// H_k = f_k L'_k + (1 - f_k) current_k [TRMV21 Sec. 4.3, Fig. 7].
+ConeValues blend_transferred(const ConeTransfer& transfer, const ConeValues& current);
 
 }  // namespace rtdr

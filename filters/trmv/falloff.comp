@@ -1,11 +1,14 @@
 // TRMV's non-planar receiver falloff [TRMV21 Eq. 4], the Vulkan port of trmv_falloff_pixel
 // (filters/trmv/falloff.cpp), function for function: x^V_{i-1} = pixel centre + m^V; s^V_{i-1} = the previous
-// frame's position at the pixel containing x^V_{i-1}; theta = angle(n(s_i), s_i -> s^V_{i-1}) (pi/2 for a static
-// shadow); alpha^V = 1 - G(theta - pi/2; 0, sigma) (1 - alpha). No evidence (no surface, an invalid vector,
-// x^V_{i-1} off the previous image or without a surface there, first frame): theta = pi/2, alpha^V = alpha. One
-// invocation per pixel. The choices the paper leaves open are the golden pass's (filters/trmv/falloff.h).
-//   in:  bindings 0 s_i, 1 n(s_i), 2 id.mesh, 3 m^V, 4 validity, 5 the previous position, 6 the previous id.mesh;
-//   out: 7 (theta, alpha^V). Layout: filters/svgf/planes_shared.h and filters/trmv/falloff_shared.h.
+// frame's position at the pixel containing x^V_{i-1}; s_i and n(s_i) carried back to frame i-1 (the previous
+// position and geonormal at the pixel holding x_i + m, on the same mesh; falloff_carry); theta = angle(n(s_i),
+// s_i -> s^V_{i-1}) (pi/2 for a static shadow); alpha^V = 1 - G(theta - pi/2; 0, sigma) (1 - alpha). No evidence
+// (no surface, an invalid vector, x^V_{i-1} off the previous image or without a surface there, first frame):
+// theta = pi/2, alpha^V = alpha. One invocation per pixel. The choices the paper leaves open are the golden pass's
+// (filters/trmv/falloff.h).
+//   in:  bindings 0 s_i, 1 n(s_i), 2 id.mesh, 3 the surface motion m, 4 m^V, 5 validity, 6 the previous position,
+//        7 the previous geonormal, 8 the previous id.mesh;
+//   out: 9 (theta, alpha^V). Layout: filters/svgf/planes_shared.h and filters/trmv/falloff_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order, and the dot products and lengths are written out in glm's
 // order ((x + y) + z). acos and exp are the device's, not libm's (tests/gpu_trmv_falloff_test.cpp derives the bound).
@@ -21,11 +24,13 @@ layout(local_size_x_id = kSvgfGroupSizeXConstant, local_size_y_id = kSvgfGroupSi
 RTDR_INPUT_RGBA(0, position)
 RTDR_INPUT_RGBA(1, normal)
 RTDR_INPUT_UINT(2, mesh)
-RTDR_INPUT_RG(3, motion)
-RTDR_INPUT_UINT(4, motion_valid)
-RTDR_INPUT_RGBA(5, prev_position)
-RTDR_INPUT_UINT(6, prev_mesh)
-layout(std430, set = 0, binding = 7) writeonly buffer OutThetaAlpha { vec2 out_theta_alpha[]; };
+RTDR_INPUT_RG(3, surface_motion)
+RTDR_INPUT_RG(4, motion)
+RTDR_INPUT_UINT(5, motion_valid)
+RTDR_INPUT_RGBA(6, prev_position)
+RTDR_INPUT_RGBA(7, prev_normal)
+RTDR_INPUT_UINT(8, prev_mesh)
+layout(std430, set = 0, binding = 9) writeonly buffer OutThetaAlpha { vec2 out_theta_alpha[]; };
 
 layout(push_constant) uniform Push { TrmvFalloffPush push; };
 
@@ -83,6 +88,21 @@ float trmv_falloff_theta(vec3 s_i, vec3 n_s_i, vec3 s_v_prev) {
   return acos(cos_theta);
 }
 
+// trmv_falloff_carry_back: s_i and n(s_i) as the previous frame shows them at the pixel holding x_i + m, when it
+// shows the same mesh; false (s, n untouched) otherwise.
+bool trmv_falloff_carry_back(int x, int y, inout vec3 s, inout vec3 n) {
+  const int i = cur_index(x, y);
+  precise vec2 x_prev = vec2(float(x) + 0.5, float(y) + 0.5) + surface_motion(i).xy;
+  if (!(x_prev.x >= 0.0 && x_prev.y >= 0.0 && x_prev.x < float(frame.prev_width) &&
+        x_prev.y < float(frame.prev_height)))
+    return false;
+  const int iq = prev_index(ivec2(floor(x_prev)));
+  if (prev_mesh(iq).x != mesh(i).x) return false;  // another surface there: not carried
+  s = prev_position(iq).xyz;
+  n = prev_normal(iq).xyz;
+  return true;
+}
+
 // The golden per-pixel function, trmv_falloff_pixel.
 TrmvFalloffPixel trmv_falloff_pixel(int x, int y) {
   const int i = cur_index(x, y);
@@ -97,8 +117,11 @@ TrmvFalloffPixel trmv_falloff_pixel(int x, int y) {
   if (!near) return no_evidence(frame.alpha);
   const ivec2 q = ivec2(floor(x_v));
   if (prev_mesh(prev_index(q)).x == RTDR_INVALID_ID) return no_evidence(frame.alpha);
-  // s^V_{i-1}: "the shading point of pixel x^V_{i-1}" in the previous frame [TRMV21 Sec. 4.1].
-  const float theta = trmv_falloff_theta(position(i).xyz, normal(i).xyz, prev_position(prev_index(q)).xyz);
+  // s^V_{i-1}: "the shading point of pixel x^V_{i-1}" in the previous frame [TRMV21 Sec. 4.1]; the receiver carried
+  // back to that frame (falloff_carry), else the current one.
+  vec3 s_i = position(i).xyz, n_s_i = normal(i).xyz;
+  if (frame.falloff_carry != 0u) trmv_falloff_carry_back(x, y, s_i, n_s_i);
+  const float theta = trmv_falloff_theta(s_i, n_s_i, prev_position(prev_index(q)).xyz);
   return TrmvFalloffPixel(theta, trmv_falloff_alpha(theta, frame.alpha, frame.falloff_sigma));
 }
 

@@ -29,12 +29,13 @@ TrmvFalloffPixel no_evidence(float alpha, Probe* probe) {
 
 void check_trmv_falloff_sizes(const TrmvReceiver& r, const TrmvMotion& shadow, const TrmvPreviousPositions& prev) {
   const int w = r.position.width, h = r.position.height;
-  if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(shadow.motion, w, h) ||
-      !empty_or_size(shadow.valid, w, h))
+  if (!has_size(r.normal, w, h) || !has_size(r.mesh, w, h) || !has_size(r.motion, w, h) ||
+      !has_size(shadow.motion, w, h) || !empty_or_size(shadow.valid, w, h))
     throw Error("trmv falloff pass: the receiver's and the shadow motion's planes are not all " + std::to_string(w) +
                 "x" + std::to_string(h));
-  if (prev.position.width != 0 && !has_size(prev.mesh, prev.position.width, prev.position.height))
-    throw Error("trmv falloff pass: the previous id.mesh is not the previous position's size");
+  if (prev.position.width != 0 && (!has_size(prev.mesh, prev.position.width, prev.position.height) ||
+                                   !has_size(prev.normal, prev.position.width, prev.position.height)))
+    throw Error("trmv falloff pass: the previous id.mesh and geonormal are not the previous position's size");
 }
 
 float trmv_falloff_gaussian(float x, float sigma) {
@@ -57,6 +58,23 @@ float trmv_falloff_theta(glm::vec3 s_i, glm::vec3 n_s_i, glm::vec3 s_v_prev) {
   return std::acos(cos_theta);
 }
 
+bool trmv_falloff_carry_back(const TrmvReceiver& receiver, const TrmvPreviousPositions& prev, int x, int y,
+                             glm::vec3& s, glm::vec3& n) {
+  if (prev.position.width == 0) return false;
+  // x_i + m: where the receiver point was in frame i-1 [TRMV21 Eq. 1]; the pixel holding it (range first, so that
+  // floor() of a far-off vector stays within int range; false for NaN too).
+  const glm::vec2 x_prev = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + receiver.motion.at(x, y);
+  if (!(x_prev.x >= 0.0f && x_prev.y >= 0.0f && x_prev.x < float(prev.position.width) &&
+        x_prev.y < float(prev.position.height)))
+    return false;
+  const glm::ivec2 q = glm::ivec2(glm::floor(x_prev));
+  if (prev.mesh.at(q.x, q.y) != receiver.mesh.at(x, y)) return false;  // another surface there: not carried
+  // T^{-1} s_i and n(T^{-1} s_i): the receiver's face in frame i-1 [TRMV21 Sec. 4.1, "inverse transformed"].
+  s = prev.position.at(q.x, q.y);
+  n = prev.normal.at(q.x, q.y);
+  return true;
+}
+
 TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMotion& shadow,
                                     const TrmvPreviousPositions& prev, const TrmvParams& params, int x, int y,
                                     Probe* probe) {
@@ -76,8 +94,11 @@ TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMoti
   if (!near) return no_evidence(params.alpha, probe);
   const glm::ivec2 q = glm::ivec2(glm::floor(x_v));
   if (prev.mesh.at(q.x, q.y) == kInvalidId) return no_evidence(params.alpha, probe);
-  const glm::vec3 s_i = receiver.position.at(x, y);
-  const glm::vec3 n_s_i = receiver.normal.at(x, y);
+  glm::vec3 s_i = receiver.position.at(x, y);
+  glm::vec3 n_s_i = receiver.normal.at(x, y);
+  // The receiver carried back to frame i-1, where s^V_{i-1} lies (falloff.h); else the current planes.
+  const bool carried = params.falloff_carry != 0 && trmv_falloff_carry_back(receiver, prev, x, y, s_i, n_s_i);
+  note(probe, "carried back", float(carried), "[TRMV21 Sec. 4.1] n(s_i) inverse transformed");
   // s^V_{i-1}: "the shading point of pixel x^V_{i-1}" in the previous frame [TRMV21 Sec. 4.1].
   const glm::vec3 s_v = prev.position.at(q.x, q.y);
   note(probe, "s_i", s_i);

@@ -1,11 +1,12 @@
 // TRMV's falloff heuristic for non-planar shadow receivers [TRMV21 Eq. 4].
 //
 // Pass: trmv_falloff_pass(receiver, shadow motion, previous positions, params) -> alpha^V per pixel.
-//   in:  s_i and n(s_i), the receiver's point and normal per pixel (`position`, `geonormal`); the shadow motion
-//        vectors m^V with their validity (x^V_{i-1} = pixel centre + m^V, TRMV21 Eq. 3); the previous frame's
-//        `position` and `id.mesh`; alpha and the falloff's std (trmv_params.h)
-//   out: theta, the angle between n(s_i) and the direction s_i -> s^V_{i-1}, where s^V_{i-1} is the previous
-//        frame's `position` at the pixel nearest to x^V_{i-1}, and
+//   in:  s_i and n(s_i), the receiver's point and normal per pixel (`position`, `geonormal`), and its surface
+//        motion (`motion`); the shadow motion vectors m^V with their validity (x^V_{i-1} = pixel centre + m^V,
+//        TRMV21 Eq. 3); the previous frame's `position`, `geonormal` and `id.mesh`; alpha, the falloff's std and
+//        falloff_carry (trmv_params.h)
+//   out: theta, the angle between n(T^{-1} s_i) and the direction T^{-1} s_i -> s^V_{i-1}, where s^V_{i-1} is the
+//        previous frame's `position` at the pixel nearest to x^V_{i-1}, and
 //          alpha^V = 1 - G(theta - pi/2; 0, sigma) (1 - alpha)                          [TRMV21 Eq. 4]
 //        with G(x; 0, sigma) = exp(-x^2 / (2 sigma^2)), a Gaussian whose PEAK is 1 ("with its peak value
 //        normalized to 1"), not its integral. alpha^V replaces alpha in Eq. 2 for the visibility.
@@ -33,8 +34,15 @@
 //   history is the temporal pass's decision (alpha = 1 for an invalid vector, temporal.h), made from the same
 //   validity plane; the two passes stay separate and agree.
 // - Moving receivers: the paper transforms n(s_i) with the receiver's motion ("inverse transformed if the shadow
-//   receiver moves over time"). This pass takes s_i and n(s_i) as given: the caller passes them carried back to
-//   the previous frame (T^{-1}) for a moving receiver, or the current planes, which are exact for a static one.
+//   receiver moves over time"): s^V_{i-1} is a point of frame i-1, so the plane it is compared with must be the
+//   receiver's plane in frame i-1 too. The filter has no transforms, but it has the previous G-buffer: the receiver
+//   point carried back, T^{-1} s_i, is where the surface motion says it was, x_i + m, and the previous frame shows
+//   that surface there. So with falloff_carry = 1 (the default) s_i and n(s_i) are the previous `position` and
+//   `geonormal` at the pixel holding x_i + m, when that pixel shows the receiver's mesh: the receiver's plane in
+//   frame i-1 exactly (a face's points and normal), its point within a pixel of T^{-1} s_i, which moves theta only
+//   off the plane (on it theta = pi/2 whatever the point). Where the previous frame does not show it
+//   (disoccluded, off the previous image) and with falloff_carry = 0, the current planes, exact for a static
+//   receiver (tests/trmv_falloff_test.cpp: a translating and a rotating receiver).
 #pragma once
 
 #include "filters/image.h"
@@ -46,16 +54,19 @@
 
 namespace rtdr {
 
-// The receiver of each pixel's shadow: s_i and n(s_i), and id.mesh (which pixels see a surface).
+// The receiver of each pixel's shadow: s_i and n(s_i), id.mesh (which pixels see a surface) and the surface motion
+// (where the receiver point was in the previous frame).
 struct TrmvReceiver {
   RgbPlane position;  // s_i, world space
   RgbPlane normal;    // n(s_i), unit (the geometric normal, the plane Eq. 3 intersects)
   UIntPlane mesh;
+  Vec2Plane motion;   // `motion` [TRMV21 Eq. 1]
 };
 
-// The previous frame's surface points: `position` and `id.mesh`. Empty (width 0): the first frame.
+// The previous frame's surface points: `position`, `geonormal` and `id.mesh`. Empty (width 0): the first frame.
 struct TrmvPreviousPositions {
   RgbPlane position;
+  RgbPlane normal;
   UIntPlane mesh;
 };
 
@@ -75,14 +86,19 @@ float trmv_falloff_gaussian(float x, float sigma);
 float trmv_falloff_alpha(float theta, float alpha, float sigma);
 // theta, the angle between n(s_i) and s_i -> s^V_{i-1}, in [0, pi]; pi/2 for the degenerate static shadow.
 float trmv_falloff_theta(glm::vec3 s_i, glm::vec3 n_s_i, glm::vec3 s_v_prev);
+// The receiver's point and normal carried back to frame i-1 (above): the previous position and geonormal at the
+// pixel holding pixel (x, y) + its surface motion, where that pixel shows the same mesh; false (and s, n left as
+// they are) where it does not.
+bool trmv_falloff_carry_back(const TrmvReceiver& receiver, const TrmvPreviousPositions& prev, int x, int y,
+                             glm::vec3& s, glm::vec3& n);
 
 // The golden per-pixel function.
 TrmvFalloffPixel trmv_falloff_pixel(const TrmvReceiver& receiver, const TrmvMotion& shadow,
                                     const TrmvPreviousPositions& prev, const TrmvParams& params, int x, int y,
                                     Probe* probe = nullptr);
 
-// Throws rtdr::Error unless the receiver's and the shadow motion's planes share a size and the previous id.mesh has
-// the previous positions': the checks of trmv_falloff_pass, which its port makes too (gpu/trmv_falloff_gpu.h).
+// Throws rtdr::Error unless the receiver's and the shadow motion's planes share a size and the previous id.mesh and
+// geonormal have the previous positions': the checks of trmv_falloff_pass, which its port makes too (gpu/trmv_falloff_gpu.h).
 void check_trmv_falloff_sizes(const TrmvReceiver& receiver, const TrmvMotion& shadow,
                               const TrmvPreviousPositions& prev);
 

@@ -9,11 +9,13 @@
 //   0 s_i            RGBA32F (x, y, z, 0), TrmvReceiver::position
 //   1 n(s_i)         RGBA32F (x, y, z, 0), TrmvReceiver::normal
 //   2 id.mesh        R32UI, TrmvReceiver::mesh
-//   3 m^V            RG32F (pixels), TrmvMotion::motion
-//   4 valid          R32UI, TrmvMotion::valid (has_valid)
-//   5 position       RGBA32F (x, y, z, 0), TrmvPreviousPositions::position, prev_width x prev_height (has_prev)
-//   6 id.mesh        R32UI, TrmvPreviousPositions::mesh, prev_width x prev_height
-//   7 (theta, alpha^V): written, a std430 array of vec2
+//   3 m              RG32F (pixels), TrmvReceiver::motion, the surface motion
+//   4 m^V            RG32F (pixels), TrmvMotion::motion
+//   5 valid          R32UI, TrmvMotion::valid (has_valid)
+//   6 position       RGBA32F (x, y, z, 0), TrmvPreviousPositions::position, prev_width x prev_height (has_prev)
+//   7 geonormal      RGBA32F (x, y, z, 0), TrmvPreviousPositions::normal, prev_width x prev_height
+//   8 id.mesh        R32UI, TrmvPreviousPositions::mesh, prev_width x prev_height
+//   9 (theta, alpha^V): written, a std430 array of vec2
 #ifndef RTDR_FILTERS_TRMV_FALLOFF_SHARED_H
 #define RTDR_FILTERS_TRMV_FALLOFF_SHARED_H
 
@@ -27,10 +29,10 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..7 above): 7 inputs (storage texel buffers, or storage buffers when built for storage
+// The number of bindings (0..9 above): 9 inputs (storage texel buffers, or storage buffers when built for storage
 // inputs: core/shader_shared.h) and 1 storage buffer. gpu/svgf_shaders.cpp checks that both fit the limits the
 // context was chosen for (gpu/vulkan_context.h).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvFalloffTexelBindings = 7;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvFalloffTexelBindings = 9;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvFalloffStorageBindings = 1;
 
 // A static shadow: s^V_{i-1} within this relative distance of s_i has no direction (filters/trmv/falloff.h). 1e-6
@@ -51,10 +53,11 @@ struct TrmvFalloffPush {
   RTDR_SHARED_UINT has_valid;    // 0: TrmvMotion::valid empty, every vector valid
   float alpha;                   // TrmvParams::alpha
   float falloff_sigma;           // TrmvParams::falloff_sigma, sigma (radians)
+  RTDR_SHARED_UINT falloff_carry;  // TrmvParams::falloff_carry: 1 the receiver carried back to frame i-1
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(TrmvFalloffPush) == 32, "eight 4-byte fields, the std430 layout of the GLSL block");
+static_assert(sizeof(TrmvFalloffPush) == 36, "nine 4-byte fields, the std430 layout of the GLSL block");
 }  // namespace rtdr
 #endif
 

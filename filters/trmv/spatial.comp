@@ -10,7 +10,8 @@
 // one plane or (GPU only) for up to three side by side: the Vulkan TRMV filters its three components in one
 // dispatch per axis, computing each tap's w_z and w_n once for all of them (gpu/trmv_vulkan.h); each plane does the
 // same operations in the same order as alone.
-//   in:  bindings 0-2 (c, std) of up to three planes, 3 surface, 4 depth gradient; out: 5-7 (c', std).
+//   in:  bindings 0-2 (c, std) of up to three planes, 3 surface, 4 depth gradient, 5 the std per axis (the penumbra
+//        filter's (sigma_x, sigma_y), has_sigma_plane = 2); out: 6-8 (c', std).
 //   Layout: filters/svgf/planes_shared.h and filters/trmv/spatial_shared.h.
 // GPU only: every arithmetic result is `precise`, so no fma contraction or reordering changes the rounding; the
 // C++ rounds after each operation in the same order. Only exp and pow (G, w_z, w_n) differ from libm's
@@ -35,9 +36,10 @@ RTDR_INPUT_RGBA(1, color_sigma_1)
 RTDR_INPUT_RGBA(2, color_sigma_2)
 RTDR_INPUT_RGBA(3, surface)
 RTDR_INPUT_RG(4, depth_grad)
-layout(std430, set = 0, binding = 5) writeonly buffer OutColor0 { vec4 out_color_0[]; };
-layout(std430, set = 0, binding = 6) writeonly buffer OutColor1 { vec4 out_color_1[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer OutColor2 { vec4 out_color_2[]; };
+RTDR_INPUT_RG(5, axis_sigma)
+layout(std430, set = 0, binding = 6) writeonly buffer OutColor0 { vec4 out_color_0[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer OutColor1 { vec4 out_color_1[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer OutColor2 { vec4 out_color_2[]; };
 
 layout(push_constant) uniform Push { TrmvSpatialPush push; };
 
@@ -120,9 +122,12 @@ void main() {
   if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
   const int i = index_of(pixel.x, pixel.y);
   float sigma_in[3], sigma_p[3];
+  // The std per axis (has_sigma_plane 2): x across, y down (trmv_spatial_pass with sigma_x and sigma_y).
+  const vec4 axis_std = frame.has_sigma_plane == 2u ? axis_sigma(i) : vec4(0.0);
   for (int m = 0; m < components; ++m) {
     sigma_in[m] = color_sigma(m, i).w;
-    sigma_p[m] = frame.has_sigma_plane != 0u ? sigma_in[m] : frame.sigma;
+    sigma_p[m] = frame.has_sigma_plane == 1u ? sigma_in[m] : frame.sigma;
+    if (frame.has_sigma_plane == 2u) sigma_p[m] = frame.axis_x != 0 ? axis_std.x : axis_std.y;
   }
   vec3 c[3];
   trmv_spatial_pixel(ivec2(frame.axis_x, frame.axis_y), frame.radius, sigma_p, pixel.x, pixel.y, c);

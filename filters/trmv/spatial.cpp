@@ -81,12 +81,19 @@ Plane<T> trmv_spatial_axis(const Plane<T>& c, const SurfacePlanes& s, glm::ivec2
 }
 
 template <class T>
-Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, const TrmvParams& params,
+Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, int radius, float sigma,
                            const SvgfParams& edges) {
   // Horizontal, then vertical: the separable form of the 31x31 joint bilateral [TRMV21 Sec. 5].
-  const Plane<T> rows =
-      trmv_spatial_axis(c, s, kTrmvHorizontal, params.spatial_radius, FloatPlane(), params.spatial_sigma, edges);
-  return trmv_spatial_axis(rows, s, kTrmvVertical, params.spatial_radius, FloatPlane(), params.spatial_sigma, edges);
+  const Plane<T> rows = trmv_spatial_axis(c, s, kTrmvHorizontal, radius, FloatPlane(), sigma, edges);
+  return trmv_spatial_axis(rows, s, kTrmvVertical, radius, FloatPlane(), sigma, edges);
+}
+
+template <class T>
+Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, int radius, const FloatPlane& sigma_x,
+                           const FloatPlane& sigma_y, const SvgfParams& edges) {
+  // Horizontal with each pixel's std across, then vertical with its std down (the penumbra filter, penumbra.h).
+  const Plane<T> rows = trmv_spatial_axis(c, s, kTrmvHorizontal, radius, sigma_x, 0.0f, edges);
+  return trmv_spatial_axis(rows, s, kTrmvVertical, radius, sigma_y, 0.0f, edges);
 }
 
 // The two kinds of plane the pipeline filters: visibility (float) and illumination (RGB).
@@ -98,7 +105,11 @@ template FloatPlane trmv_spatial_axis(const FloatPlane&, const SurfacePlanes&, g
                                       float, const SvgfParams&);
 template RgbPlane trmv_spatial_axis(const RgbPlane&, const SurfacePlanes&, glm::ivec2, int, const FloatPlane&, float,
                                     const SvgfParams&);
-template FloatPlane trmv_spatial_pass(const FloatPlane&, const SurfacePlanes&, const TrmvParams&, const SvgfParams&);
-template RgbPlane trmv_spatial_pass(const RgbPlane&, const SurfacePlanes&, const TrmvParams&, const SvgfParams&);
+template FloatPlane trmv_spatial_pass(const FloatPlane&, const SurfacePlanes&, int, float, const SvgfParams&);
+template RgbPlane trmv_spatial_pass(const RgbPlane&, const SurfacePlanes&, int, float, const SvgfParams&);
+template FloatPlane trmv_spatial_pass(const FloatPlane&, const SurfacePlanes&, int, const FloatPlane&,
+                                      const FloatPlane&, const SvgfParams&);
+template RgbPlane trmv_spatial_pass(const RgbPlane&, const SurfacePlanes&, int, const FloatPlane&, const FloatPlane&,
+                                    const SvgfParams&);
 
 }  // namespace rtdr

@@ -1,10 +1,11 @@
 // TRMV's spatial filter of the current frame, step 1 of its pipeline [TRMV21 Sec. 5, "Choice of spatial
 // filters"]: "For shadows, we simply implement a separable 31x31 joint bilateral filter [KCLU07]".
 //
-// Pass: trmv_spatial_pass(c, s, params, edges) -> c~, the spatially filtered current frame (Eq. 2's c~_i).
+// Pass: trmv_spatial_pass(c, s, radius, sigma, edges) -> c~, the spatially filtered current frame (Eq. 2's c~_i).
 //   in:  a scalar plane (visibility) or an RGB plane (illumination), the current G-buffer planes (depth, depth
-//        gradient, normals, mesh ids), the radius and spatial std (trmv_params.h) and SVGF's edge-stopping
-//        sigmas and epsilon (svgf_params.h)
+//        gradient, normals, mesh ids), the radius and spatial std (trmv_params.h, scaled to the frame:
+//        filters/trmv/footprint.h) or a std per pixel and axis, and SVGF's edge-stopping sigmas and epsilon
+//        (svgf_params.h)
 //   out: c~ after a horizontal, then a vertical 1-D pass. Each 1-D pass at pixel p over the taps q = p + k e,
 //        k = -r .. r, e the pass's axis:
 //          c'(p) = sum_k G(k; 0, sigma) w_z(p, q) w_n(p, q) c(q) / sum_k G(k; 0, sigma) w_z(p, q) w_n(p, q)
@@ -64,10 +65,15 @@ template <class T>
 Plane<T> trmv_spatial_axis(const Plane<T>& c, const SurfacePlanes& s, glm::ivec2 axis, int radius,
                            const FloatPlane& sigma, float sigma_all, const SvgfParams& edges);
 
-// The spatial filter: the horizontal pass, then the vertical pass, radius spatial_radius and std spatial_sigma.
-// Throws rtdr::Error when the planes' sizes disagree.
+// The spatial filter: the horizontal pass, then the vertical pass, with this radius and std (TrmvWindows'
+// shadow_radius and shadow_sigma: spatial_radius and spatial_sigma scaled to the frame, filters/trmv/footprint.h);
+// or with a std per pixel and axis (sigma_x for the horizontal pass, sigma_y for the vertical one: the penumbra
+// filter, filters/trmv/penumbra.h). Throws rtdr::Error when the planes' sizes disagree.
 template <class T>
-Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, const TrmvParams& params,
+Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, int radius, float sigma,
                            const SvgfParams& edges);
+template <class T>
+Plane<T> trmv_spatial_pass(const Plane<T>& c, const SurfacePlanes& s, int radius, const FloatPlane& sigma_x,
+                           const FloatPlane& sigma_y, const SvgfParams& edges);
 
 }  // namespace rtdr

@@ -6,10 +6,11 @@
 //
 // Bindings (records row-major: filters/svgf/planes_shared.h):
 //   0-2 (c, std)   RGBA32F: the planes to filter, the first `components` of them (kTrmvSpatialComponentsConstant);
-//                  w the pixel's std (has_sigma_plane), else unread
+//                  w the pixel's std (has_sigma_plane 1), else unread
 //   3 surface      RGBA32F (n, z), z = kNoSurfaceDepth without a surface (pack_surface)
 //   4 grad z       RG32F, per pixel
-//   5-7 (c', std)  written, std430 arrays of vec4: the filtered planes, w copied from the input (the next axis
+//   5 std per axis RG32F (sigma_x, sigma_y): the penumbra filter's (has_sigma_plane 2), else one unread texel
+//   6-8 (c', std)  written, std430 arrays of vec4: the filtered planes, w copied from the input (the next axis
 //                  reads it)
 // Bindings of planes beyond `components` are bound (to any buffer) and never read or written.
 #ifndef RTDR_FILTERS_TRMV_SPATIAL_SHARED_H
@@ -23,10 +24,10 @@
 namespace rtdr {
 #endif
 
-// The number of bindings (0..7 above): 5 inputs (storage texel buffers, or storage buffers when built for storage
+// The number of bindings (0..8 above): 6 inputs (storage texel buffers, or storage buffers when built for storage
 // inputs: core/shader_shared.h) and 1 storage buffer. gpu/svgf_shaders.cpp checks that both fit the limits the
 // context was chosen for (gpu/vulkan_context.h).
-RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialTexelBindings = 5;
+RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialTexelBindings = 6;
 RTDR_SHARED_CONST RTDR_SHARED_UINT kTrmvSpatialStorageBindings = 3;
 
 // The specialization constant that says how many planes a dispatch filters side by side (1 to 3; 1 unspecialized).
@@ -43,7 +44,8 @@ struct TrmvSpatialPush {
   RTDR_SHARED_INT axis_x;            // the step e between taps: (1, 0) horizontal, (0, 1) vertical
   RTDR_SHARED_INT axis_y;
   RTDR_SHARED_INT radius;            // r >= 0: taps k = -r .. r
-  RTDR_SHARED_UINT has_sigma_plane;  // 1: each plane's std is its record's w per pixel; 0: `sigma` everywhere
+  RTDR_SHARED_UINT has_sigma_plane;  // 0: `sigma` everywhere; 1: each plane's std is its record's w per pixel;
+                                     // 2: binding 5's, x along the horizontal axis and y along the vertical
   float sigma;                       // sigma_all, the spatial std in pixels
   float sigma_z;                     // SvgfParams::sigma_z [SVGF17 Eq. 3]
   float sigma_n;                     // SvgfParams::sigma_n [SVGF17 Eq. 4]

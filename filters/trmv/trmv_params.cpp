@@ -17,6 +17,9 @@ void validate(const TrmvParams& p) {
   // A K x K window centred on the pixel reaches (K - 1) / 2 pixels each way; an even K has no centre.
   if (p.cleanup_size % 2 == 0)
     throw Error("trmv parameter cleanup_size = " + std::to_string(p.cleanup_size) + " must be odd (TRMV21 Sec. 5: 9x9)");
+  if (p.splat_size != 0 && p.splat_size % 2 == 0)
+    throw Error("trmv parameter splat_size = " + std::to_string(p.splat_size) +
+                " must be odd, or 0 for the shadow filter's window (TRMV21 Sec. 4.1)");
 }
 
 int trmv_motion_from_name(const std::string& name) {

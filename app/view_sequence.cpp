@@ -6,6 +6,7 @@
 #include "app/sequence.h"
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "core/memory_budget.h"
 #include "eval/experiment.h"
 #include "eval/metrics.h"
 #include "filters/image.h"
@@ -38,22 +39,12 @@ void require_inside(const std::string& dir, const std::string& file, const std::
                 "'): rtdr view reads only files inside the folders it is given");
 }
 
-// The resident memory of this process and the memory the system has available, in bytes (Linux's /proc).
+// The resident memory of this process, in bytes (Linux's /proc).
 size_t resident_bytes() {
   std::ifstream statm("/proc/self/statm");
   size_t pages = 0, resident = 0;
   statm >> pages >> resident;
   return resident * size_t(sysconf(_SC_PAGESIZE));
-}
-size_t available_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  for (std::string key; meminfo >> key;) {
-    size_t kb = 0;
-    meminfo >> kb;
-    if (key == "MemAvailable:") return kb * 1024;
-    meminfo.ignore(256, '\n');
-  }
-  return 0;  // unknown: no check
 }
 
 // A frame with only `channels` of `from`: what the view keeps of an input frame (the layers the method reads).
@@ -206,12 +197,10 @@ ViewSequence::ViewSequence(const ViewOptions& o, const std::function<void(const 
     // After the first viewed frame: would all of them fit? Each keeps about as much as the first did.
     if (frames_.size() == 1) {
       const size_t per_frame = resident_bytes() > resident_at_start ? resident_bytes() - resident_at_start : 0;
-      const size_t needed = per_frame * (viewed.size() - 1), available = available_bytes();
-      if (available > 0 && needed > available / 10 * 9)
-        throw Error("keeping " + std::to_string(viewed.size()) + " frames of " + std::to_string(in.width()) + "x" +
-                    std::to_string(in.height()) + " needs about " + std::to_string((needed + per_frame) >> 20) +
-                    " MB, more than the " + std::to_string(available >> 20) +
-                    " MB available: view fewer frames with --frames A-B");
+      require_within_budget(saturating_product(per_frame, viewed.size() - 1),
+                            "keeping " + std::to_string(viewed.size()) + " frames of " + std::to_string(in.width()) +
+                                "x" + std::to_string(in.height()) + " (view fewer with --frames A-B)",
+                            memory_budget());
     }
   }
   make_info();

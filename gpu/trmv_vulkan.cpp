@@ -250,7 +250,7 @@ Frame TrmvVulkan::filter(const Frame& in, Frame* dump) {
   }
   times_[kTransferPass] += ms_since(t0);
 
-  // 2. On the host, the golden passes that have no port yet; their results are uploaded.
+  // 2. On the host, the golden passes that have no port (filters/trmv/README.md); their results are uploaded.
   const RgbPlane reshaded = host_passes(in, b, surface, win);
   const bool shadow = trmv_uses_shadow(p.motion), dual = trmv_uses_dual(p.motion);
 
